@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Installs the Debian packages pgmcl needs, only those missing. Run as root.
+set -euo pipefail
+packages=(
+  build-essential cmake pkg-config          # toolchain
+  libeigen3-dev libnanoflann-dev libyaml-cpp-dev zlib1g-dev libstb-dev   # libraries
+  libcli11-dev                              # command line
+  libgtest-dev libgmock-dev libbenchmark-dev   # tests and micro-benchmarks
+  clang libclang-rt-14-dev libomp-dev       # libFuzzer targets (clang) and OpenMP for clang
+  gnuplot-nox                               # benchmark plots
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "pgmcl setup: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+else
+  echo "pgmcl setup: all packages present"
+fi

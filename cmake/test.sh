@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# The whole test suite, as the README's second command and .ci/run run it:
+#   1. Release build, warnings as errors, OpenMP on; every test (closed loops with 2 threads).
+#   2. Debug build (-O1) under AddressSanitizer + UBSan, OpenMP off (proves the serial build).
+#   3. Install, then build and run a consumer project against find_package(pgmcl).
+#   4. Bounded libFuzzer runs of each fuzz target (clang).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash cmake/setup.sh
+jobs=${PGMCL_JOBS:-2}
+fuzz_seconds=${PGMCL_FUZZ_SECONDS:-60}
+root=$PWD
+t0=$SECONDS
+
+echo "== [1/4] Release build + tests"
+cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release -DPGMCL_WERROR=ON >/dev/null
+cmake --build build/release -j"$jobs"
+ctest --test-dir build/release --output-on-failure -j"$jobs"
+
+echo "== [2/4] Debug + ASan/UBSan build + tests (serial, no OpenMP)"
+cmake -S . -B build/asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" \
+  -DPGMCL_SANITIZE=ON -DPGMCL_USE_OPENMP=OFF -DPGMCL_WERROR=ON -DPGMCL_BUILD_BENCH=OFF >/dev/null
+cmake --build build/asan -j"$jobs"
+ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  ctest --test-dir build/asan --output-on-failure -j"$jobs"
+
+echo "== [3/4] Install + find_package(pgmcl) consumer"
+rm -rf build/install build/consumer
+cmake --install build/release --prefix build/install >/dev/null
+cmake -S mcl/examples/consumer -B build/consumer -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_PREFIX_PATH="$root/build/install" >/dev/null
+cmake --build build/consumer -j"$jobs"
+build/consumer/pgmcl_consumer "$root/data"
+
+echo "== [4/4] Fuzzing (${fuzz_seconds}s per target)"
+if [ -d tests/fuzz ] && command -v clang++ >/dev/null; then
+  CXX=clang++ cmake -S . -B build/fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPGMCL_FUZZ=ON \
+    -DPGMCL_BUILD_TESTS=OFF -DPGMCL_BUILD_BENCH=OFF -DPGMCL_USE_OPENMP=OFF >/dev/null
+  cmake --build build/fuzz -j"$jobs" --target pgmcl_fuzzers
+  bash tests/fuzz/run_all.sh build/fuzz "$fuzz_seconds"
+else
+  echo "no fuzz targets yet"
+fi
+echo "== all test stages passed in $((SECONDS - t0)) s"

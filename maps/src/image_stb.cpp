@@ -1,0 +1,92 @@
+// PNG (and BMP, JPEG, TGA, ...) through Debian's libstb. The shared library holds the
+// implementations, so no STB_*_IMPLEMENTATION here. stb's flip flag is process-global
+// state; the loader flips rows itself instead.
+
+#include <stb/stb_image.h>
+#include <stb/stb_image_write.h>
+
+#include <climits>
+#include <cstdint>
+#include <cstdlib>
+#include <memory>
+#include <string>
+
+#include "image_codec.hpp"
+#include "pgmcl/maps/map_io.hpp"
+
+namespace pgmcl::maps::detail {
+
+namespace {
+
+struct StbFree {
+  void operator()(void* p) const noexcept { stbi_image_free(p); }
+};
+
+std::string stb_reason() {
+  const char* why = stbi_failure_reason();
+  return why != nullptr ? why : "unknown error";
+}
+
+void append_bytes(void* context, void* data, int size) {
+  auto* out = static_cast<Bytes*>(context);
+  const auto* p = static_cast<const std::uint8_t*>(data);
+  out->insert(out->end(), p, p + size);
+}
+
+}  // namespace
+
+Image decode_stb(const Bytes& bytes, const std::string& path) {
+  if (bytes.size() > static_cast<std::size_t>(INT_MAX)) {
+    throw MapError(path, 0, "image", "file too large");
+  }
+  const auto* data = bytes.data();
+  const int len = static_cast<int>(bytes.size());
+  int w = 0, h = 0, comp = 0;
+  if (stbi_info_from_memory(data, len, &w, &h, &comp) == 0) {
+    throw MapError(path, 0, "image", "not a readable image (PGM, PNG, BMP, ...): " + stb_reason());
+  }
+  if (w <= 0 || h <= 0 || comp < 1 || comp > 4 ||
+      static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) > kMaxPixels) {
+    throw MapError(path, 0, "image",
+                   "unsupported image size " + std::to_string(w) + " x " + std::to_string(h));
+  }
+  Image img;
+  const bool wide = stbi_is_16_bit_from_memory(data, len) != 0;
+  int dw = 0, dh = 0, dcomp = 0;
+  std::unique_ptr<void, StbFree> pixels(
+      wide ? static_cast<void*>(stbi_load_16_from_memory(data, len, &dw, &dh, &dcomp, 0))
+           : static_cast<void*>(stbi_load_from_memory(data, len, &dw, &dh, &dcomp, 0)));
+  if (!pixels) throw MapError(path, 0, "pixel data", "corrupt image: " + stb_reason());
+  if (dw != w || dh != h || dcomp != comp) {
+    throw MapError(path, 0, "pixel data", "decoder disagrees with the header");
+  }
+  img.width = w;
+  img.height = h;
+  img.channels = comp;
+  img.maxval = wide ? 65535 : 255;
+  const std::size_t n =
+      static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * static_cast<std::size_t>(comp);
+  img.samples.resize(n);
+  if (wide) {
+    const auto* p = static_cast<const std::uint16_t*>(pixels.get());
+    img.samples.assign(p, p + n);
+  } else {
+    const auto* p = static_cast<const std::uint8_t*>(pixels.get());
+    for (std::size_t i = 0; i < n; ++i) img.samples[i] = p[i];
+  }
+  return img;
+}
+
+Bytes encode_png(const Image& image, const std::string& path) {
+  std::vector<std::uint8_t> raw(image.samples.size());
+  for (std::size_t i = 0; i < raw.size(); ++i) raw[i] = static_cast<std::uint8_t>(image.samples[i]);
+  Bytes out;
+  const int stride = image.width * image.channels;
+  if (stbi_write_png_to_func(&append_bytes, &out, image.width, image.height, image.channels,
+                             raw.data(), stride) == 0) {
+    throw MapError(path, 0, "image", "PNG encoding failed");
+  }
+  return out;
+}
+
+}  // namespace pgmcl::maps::detail

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "detail/normal_mass.hpp"
+
 namespace pgmcl::sensor_model {
 namespace {
 
@@ -31,19 +33,6 @@ void require_positive(double v, const char* name) {
 
 double log_or_neg_inf(double v) {
   return v > 0.0 ? std::log(v) : kNegInf;
-}
-
-// log of the standard normal mass in [a, b], a <= b, without cancellation in either tail.
-double log_normal_mass(double a, double b) {
-  const double r = 1.0 / std::numbers::sqrt2;
-  double m;
-  if (a >= 0.0)
-    m = 0.5 * (std::erfc(a * r) - std::erfc(b * r));
-  else if (b <= 0.0)
-    m = 0.5 * (std::erfc(-b * r) - std::erfc(-a * r));
-  else
-    m = 1.0 - 0.5 * (std::erfc(-a * r) + std::erfc(b * r));
-  return std::log(m);
 }
 
 }  // namespace
@@ -95,7 +84,7 @@ double BeamMixture::log_pdf(double range, double expected_range) const noexcept 
     // Truncation to [0, max_range]: eta differs from 1 by < 1e-15 beyond 8 sigma from both
     // ends, so the two erfc calls are only paid near them.
     if (mu < 8.0 * s || mu > p_.max_range - 8.0 * s)
-      hit -= log_normal_mass(-mu / s, (p_.max_range - mu) / s);
+      hit -= std::log(detail::normal_mass(-mu / s, (p_.max_range - mu) / s));
   }
   const double spike = range >= p_.max_range - p_.max_spike_width ? log_spike_ : kNegInf;
   const double top = std::max({hit, log_rand_, spike});

@@ -49,6 +49,9 @@ void write_file_bytes(const std::string& path, const Bytes& bytes);
 /// Sniffs the content: gzip is unwrapped first, then PNM or stb.
 [[nodiscard]] Image decode_image(const Bytes& bytes, const std::string& path);
 
+/// Shortest text that reads back as exactly `v`, and still reads as a float ("1.0").
+[[nodiscard]] std::string format_double(double v);
+
 /// YAML lines (1-based, 0 = unknown) of the metadata fields, for error messages.
 struct MetadataLines {
   int resolution = 0;

@@ -1,6 +1,8 @@
 // Image <-> occupancy values, following nav2_map_server's map_io.cpp (loadMapFromFile,
 // saveMapToFile) so that maps mean here what they mean in ROS.
 
+#include <array>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -71,12 +73,20 @@ MapMode map_mode_from_string(const std::string& name) {
 
 namespace detail {
 
+std::string format_double(double v) {
+  std::array<char, 64> buf{};
+  const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), v);
+  std::string s(buf.data(), res.ptr);
+  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
+  return s;
+}
+
 void validate_metadata(const MapMetadata& meta, const std::string& file,
                        const MetadataLines& lines) {
   if (!std::isfinite(meta.resolution) || meta.resolution <= 0.0) {
     throw MapError(
         file, lines.resolution, "resolution",
-        "must be a positive number of metres per cell, got " + std::to_string(meta.resolution));
+        "must be a positive number of metres per cell, got " + format_double(meta.resolution));
   }
   if (!std::isfinite(meta.origin.x) || !std::isfinite(meta.origin.y) ||
       !std::isfinite(meta.origin.theta)) {
@@ -85,17 +95,16 @@ void validate_metadata(const MapMetadata& meta, const std::string& file,
   const auto in_unit = [](double v) { return std::isfinite(v) && v >= 0.0 && v <= 1.0; };
   if (!in_unit(meta.occupied_thresh)) {
     throw MapError(file, lines.occupied_thresh, "occupied_thresh",
-                   "must be in [0, 1], got " + std::to_string(meta.occupied_thresh));
+                   "must be in [0, 1], got " + format_double(meta.occupied_thresh));
   }
   if (!in_unit(meta.free_thresh)) {
     throw MapError(file, lines.free_thresh, "free_thresh",
-                   "must be in [0, 1], got " + std::to_string(meta.free_thresh));
+                   "must be in [0, 1], got " + format_double(meta.free_thresh));
   }
   if (meta.free_thresh >= meta.occupied_thresh) {
     throw MapError(file, lines.free_thresh, "free_thresh",
-                   "must be below occupied_thresh (free_thresh " +
-                       std::to_string(meta.free_thresh) + " >= occupied_thresh " +
-                       std::to_string(meta.occupied_thresh) + ")");
+                   "must be below occupied_thresh (free_thresh " + format_double(meta.free_thresh) +
+                       " >= occupied_thresh " + format_double(meta.occupied_thresh) + ")");
   }
 }
 

@@ -4,9 +4,9 @@
 #include <yaml-cpp/yaml.h>
 
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -30,11 +30,24 @@ int line_of(const YAML::Node& node) {
 
 class YamlReader {
  public:
-  YamlReader(const std::string& file, const YAML::Node& root) : file_(file), root_(root) {}
+  YamlReader(const std::string& file, const YAML::Node& root) : file_(file), root_(root) {
+    for (const auto& kv : root_) {
+      if (kv.first.IsScalar()) key_lines_.emplace(kv.first.Scalar(), line_of(kv.first));
+    }
+  }
 
+  /// Throws for `field`; the line is the value's, or the key's when the value is empty
+  /// (yaml-cpp marks an empty value at the next token).
   [[noreturn]] void fail(const YAML::Node& node, const std::string& field,
                          const std::string& problem) const {
-    throw MapError(file_, node ? line_of(node) : 0, field, problem);
+    int line = 0;
+    if (node && !node.IsNull()) {
+      line = line_of(node);
+    } else if (const auto it = key_lines_.find(field.substr(0, field.find('[')));
+               it != key_lines_.end()) {
+      line = it->second;
+    }
+    throw MapError(file_, line, field, problem);
   }
 
   /// The value of `key`, or an undefined node; a present but empty value is an error.
@@ -90,20 +103,14 @@ class YamlReader {
  private:
   const std::string& file_;
   const YAML::Node& root_;
+  std::map<std::string, int> key_lines_;
 };
-
-std::string format_double(double v) {
-  std::array<char, 64> buf{};
-  const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), v);
-  std::string s(buf.data(), res.ptr);
-  // Keep it a float to a YAML reader ("1" -> "1.0").
-  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
-  return s;
-}
 
 }  // namespace
 
-MapMetadata read_map_yaml(const std::string& yaml_path, MapLoadReport* report) {
+namespace {
+
+MapMetadata parse_map_yaml(const std::string& yaml_path, MapLoadReport* report, int* image_line) {
   const detail::Bytes bytes = detail::read_file_bytes(yaml_path, "map YAML file");
   YAML::Node root;
   try {
@@ -136,6 +143,7 @@ MapMetadata read_map_yaml(const std::string& yaml_path, MapLoadReport* report) {
   const YAML::Node image = r.find("image", true);
   meta.image = r.scalar_text(image, "image");
   if (meta.image.empty()) r.fail(image, "image", "must name an image file");
+  if (image_line != nullptr) *image_line = line_of(image);
 
   const YAML::Node res = r.find("resolution", true);
   meta.resolution = r.number(res, "resolution");
@@ -154,13 +162,13 @@ MapMetadata read_map_yaml(const std::string& yaml_path, MapLoadReport* report) {
     meta.occupied_thresh = r.number(n, "occupied_thresh");
     lines.occupied_thresh = line_of(n);
   } else {
-    defaulted("occupied_thresh", format_double(meta.occupied_thresh));
+    defaulted("occupied_thresh", detail::format_double(meta.occupied_thresh));
   }
   if (const YAML::Node n = r.find("free_thresh", false)) {
     meta.free_thresh = r.number(n, "free_thresh");
     lines.free_thresh = line_of(n);
   } else {
-    defaulted("free_thresh", format_double(meta.free_thresh));
+    defaulted("free_thresh", detail::format_double(meta.free_thresh));
   }
   if (const YAML::Node n = r.find("negate", false)) {
     meta.negate = r.flag(n, "negate");
@@ -184,10 +192,17 @@ MapMetadata read_map_yaml(const std::string& yaml_path, MapLoadReport* report) {
   return meta;
 }
 
+}  // namespace
+
+MapMetadata read_map_yaml(const std::string& yaml_path, MapLoadReport* report) {
+  return parse_map_yaml(yaml_path, report, nullptr);
+}
+
 OccupancyGrid load_map(const std::string& yaml_path, MapLoadReport* report) {
   MapLoadReport local;
   MapLoadReport& rep = report != nullptr ? *report : local;
-  const MapMetadata meta = read_map_yaml(yaml_path, &rep);
+  int image_line = 0;
+  const MapMetadata meta = parse_map_yaml(yaml_path, &rep, &image_line);
 
   fs::path image = meta.image;
   if (image.is_relative()) image = fs::path(yaml_path).parent_path() / image;
@@ -196,14 +211,19 @@ OccupancyGrid load_map(const std::string& yaml_path, MapLoadReport* report) {
     return load_map_image(rep.image_path, meta);
   } catch (const MapError& e) {
     // Point back at the YAML that named the image.
-    throw MapError(e.file(), e.line(), e.field().empty() ? "image" : e.field(),
-                   e.problem() + " (image of " + yaml_path + ")");
+    throw MapError(
+        e.file(), e.line(), e.field().empty() ? "image" : e.field(),
+        e.problem() + " (image named in " + yaml_path + ":" + std::to_string(image_line) + ")");
   }
 }
 
 void save_map(const OccupancyGrid& grid, const std::string& yaml_path,
               const std::string& image_name) {
   fs::path yaml(yaml_path);
+  if (!std::isfinite(grid.origin().x) || !std::isfinite(grid.origin().y) ||
+      !std::isfinite(grid.origin().theta)) {
+    throw MapError(yaml_path, 0, "origin", "the grid's origin is not finite");
+  }
   std::string name = image_name;
   if (name.empty()) name = yaml.stem().string() + ".pgm";
   const fs::path image = fs::path(name).is_absolute() ? fs::path(name) : yaml.parent_path() / name;
@@ -214,10 +234,10 @@ void save_map(const OccupancyGrid& grid, const std::string& yaml_path,
   out << YAML::BeginMap;
   out << YAML::Key << "image" << YAML::Value << name;
   out << YAML::Key << "mode" << YAML::Value << "trinary";
-  out << YAML::Key << "resolution" << YAML::Value << format_double(grid.resolution());
+  out << YAML::Key << "resolution" << YAML::Value << detail::format_double(grid.resolution());
   out << YAML::Key << "origin" << YAML::Value << YAML::Flow << YAML::BeginSeq
-      << format_double(grid.origin().x) << format_double(grid.origin().y)
-      << format_double(grid.origin().theta) << YAML::EndSeq;
+      << detail::format_double(grid.origin().x) << detail::format_double(grid.origin().y)
+      << detail::format_double(grid.origin().theta) << YAML::EndSeq;
   out << YAML::Key << "negate" << YAML::Value << 0;
   out << YAML::Key << "occupied_thresh" << YAML::Value << "0.65";
   out << YAML::Key << "free_thresh" << YAML::Value << "0.196";

@@ -107,10 +107,10 @@ TEST(PaperTable4, HowSigmaAcrossRelatesToTheYColumn) {
 // distribution" to the boundary-shift data (Fig. 10) but neither publishes the shift
 // magnitudes nor says how sigma was obtained. From the counts alone, with p = mean shift
 // fraction per distance:
-//   p                      = 0.3664, 0.2026, 0.1222, 0.0408
-//   sqrt(p) (+/-1 step shifts, variance p)   = 0.6053, 0.4501, 0.3496, 0.2020
+//   p                                          = 0.3664, 0.2026, 0.1222, 0.0408
+//   sqrt(p) (+/-1 step shifts, variance p)     = 0.6053, 0.4501, 0.3496, 0.2020
 //   0.5 / z(1 - p/2) (jitter past half a step) = 0.5536, 0.3924, 0.3235, 0.2444
-//   Table 4 sigma           = 0.6078, 0.4160, 0.2907, 0.1269
+//   Table 4 sigma                              = 0.6078, 0.4160, 0.2907, 0.1269
 // sqrt(p) fits the 50 cm row (-0.4 %) and nothing else (+8 %, +20 %, +59 %); the probit model
 // is off by -9 % to +93 %; p itself by -40 % to -68 %. What the counts do support is the ordering:
 // shifts become rarer with distance, as Table 4's sigma does. Table 4's sigma is therefore taken as

@@ -11,6 +11,7 @@
 /// x = 40 is the 0.1629 entry below the centre), i.e. paper[i][j] == table.at(i - 1, j - 1)
 /// at beam angle 0: the paper's table is the transpose of ours.
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 

@@ -1,0 +1,69 @@
+#pragma once
+/// metrics.yaml: what a localisation run measured about itself (timing, particle counts,
+/// beams) and, when ground truth or benchmark relations are given, its accuracy.
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace pgmcl::io {
+
+/// Accuracy against a ground-truth trajectory (see the evaluation API).
+struct AccuracyMetrics {
+  double ate_rmse_m = 0.0;        ///< absolute trajectory error, RMSE of position, metres
+  double ate_max_m = 0.0;         ///< largest position error, metres
+  double heading_rmse_deg = 0.0;  ///< RMSE of wrapped heading error, degrees
+  /// Seconds from the first estimate until the error stays small; nullopt if never.
+  std::optional<double> converged_after_s;
+  std::size_t matched = 0;  ///< estimate poses matched to ground truth
+};
+
+/// Kümmerle et al. (2009) relations error.
+struct RelationsMetrics {
+  double trans_m = 0.0;  ///< mean translational error of the relations, metres
+  double rot_deg = 0.0;  ///< mean rotational error, degrees
+  std::size_t used = 0;  ///< relations whose two stamps matched estimate poses
+};
+
+struct RunMetrics {
+  std::size_t updates = 0;          ///< measurement updates performed
+  std::size_t skipped_updates = 0;  ///< scans the filter skipped (gating, bad scan)
+  double update_ms_mean = 0.0;      ///< per-update wall time, milliseconds
+  double update_ms_p95 = 0.0;       ///< 95th percentile (nearest rank), milliseconds
+  double wall_s = 0.0;              ///< whole run, seconds
+  double particles_mean = 0.0;      ///< over performed updates
+  double beams_used_mean = 0.0;     ///< over performed updates
+  std::optional<AccuracyMetrics> accuracy;
+  std::optional<RelationsMetrics> relations;
+};
+
+/// Collects per-update figures during a run.
+class MetricsAccumulator {
+ public:
+  void add_update(double update_ms, std::size_t particles, std::size_t beams_used);
+  void add_skipped() { ++skipped_; }
+  /// Means and the p95 so far; accuracy and relations are left empty.
+  [[nodiscard]] RunMetrics summarise(double wall_s) const;
+
+ private:
+  std::vector<double> update_ms_;
+  double particles_sum_ = 0.0;
+  double beams_sum_ = 0.0;
+  std::size_t skipped_ = 0;
+};
+
+/// Nearest-rank percentile (p in [0, 100]) of unsorted values; 0 for an empty input.
+[[nodiscard]] double percentile(std::vector<double> values, double p);
+
+/// The YAML text of metrics.yaml (keys as in RunMetrics; accuracy and relations keys:
+/// ate_rmse_m, ate_max_m, heading_rmse_deg, converged_after_s (null if never),
+/// relations_trans_m, relations_rot_deg, relations_used).
+[[nodiscard]] std::string metrics_yaml(const RunMetrics& m);
+/// Writes metrics_yaml(m) to `path`; throws IoError on failure.
+void write_metrics_yaml(const std::string& path, const RunMetrics& m);
+
+/// Human-readable two-column table of the same figures (for `pgmcl eval` and summaries).
+[[nodiscard]] std::string metrics_table(const RunMetrics& m);
+
+}  // namespace pgmcl::io

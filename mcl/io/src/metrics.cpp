@@ -1,0 +1,113 @@
+#include "pgmcl/io/metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <utility>
+
+#include "pgmcl/io/errors.hpp"
+
+namespace pgmcl::io {
+namespace {
+
+std::string num(double v) {
+  if (std::isnan(v)) return ".nan";
+  if (std::isinf(v)) return v > 0 ? ".inf" : "-.inf";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+/// Rows of (key, value text, unit) shared by the YAML and the table.
+std::vector<std::pair<std::string, std::string>> rows(const RunMetrics& m) {
+  std::vector<std::pair<std::string, std::string>> r = {
+      {"updates", std::to_string(m.updates)},
+      {"skipped_updates", std::to_string(m.skipped_updates)},
+      {"update_ms_mean", num(m.update_ms_mean)},
+      {"update_ms_p95", num(m.update_ms_p95)},
+      {"wall_s", num(m.wall_s)},
+      {"particles_mean", num(m.particles_mean)},
+      {"beams_used_mean", num(m.beams_used_mean)},
+  };
+  if (m.accuracy) {
+    const AccuracyMetrics& a = *m.accuracy;
+    r.emplace_back("ate_rmse_m", num(a.ate_rmse_m));
+    r.emplace_back("ate_max_m", num(a.ate_max_m));
+    r.emplace_back("heading_rmse_deg", num(a.heading_rmse_deg));
+    r.emplace_back("converged_after_s",
+                   a.converged_after_s ? num(*a.converged_after_s) : std::string("null"));
+    r.emplace_back("truth_matched", std::to_string(a.matched));
+  }
+  if (m.relations) {
+    r.emplace_back("relations_trans_m", num(m.relations->trans_m));
+    r.emplace_back("relations_rot_deg", num(m.relations->rot_deg));
+    r.emplace_back("relations_used", std::to_string(m.relations->used));
+  }
+  return r;
+}
+
+}  // namespace
+
+void MetricsAccumulator::add_update(double update_ms, std::size_t particles,
+                                    std::size_t beams_used) {
+  update_ms_.push_back(update_ms);
+  particles_sum_ += static_cast<double>(particles);
+  beams_sum_ += static_cast<double>(beams_used);
+}
+
+RunMetrics MetricsAccumulator::summarise(double wall_s) const {
+  RunMetrics m;
+  m.updates = update_ms_.size();
+  m.skipped_updates = skipped_;
+  m.wall_s = wall_s;
+  if (!update_ms_.empty()) {
+    const double n = static_cast<double>(update_ms_.size());
+    double sum = 0.0;
+    for (const double v : update_ms_) sum += v;
+    m.update_ms_mean = sum / n;
+    m.update_ms_p95 = percentile(update_ms_, 95.0);
+    m.particles_mean = particles_sum_ / n;
+    m.beams_used_mean = beams_sum_ / n;
+  }
+  return m;
+}
+
+double percentile(std::vector<double> values, double p) {
+  if (values.empty()) return 0.0;
+  p = std::clamp(p, 0.0, 100.0);
+  // Nearest rank: the smallest value with at least p % of the data at or below it.
+  const auto n = values.size();
+  auto rank = static_cast<std::size_t>(std::ceil(p / 100.0 * static_cast<double>(n)));
+  rank = std::clamp<std::size_t>(rank, 1, n);
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(rank - 1),
+                   values.end());
+  return values[rank - 1];
+}
+
+std::string metrics_yaml(const RunMetrics& m) {
+  std::string out = "# pgmcl run metrics\n";
+  for (const auto& [key, value] : rows(m)) out += key + ": " + value + "\n";
+  return out;
+}
+
+void write_metrics_yaml(const std::string& path, const RunMetrics& m) {
+  std::ofstream f(path);
+  if (!f) throw IoError(path + ": cannot create file");
+  f << metrics_yaml(m);
+  f.close();
+  if (!f) throw IoError(path + ": write failed");
+}
+
+std::string metrics_table(const RunMetrics& m) {
+  std::size_t w = 0;
+  const auto r = rows(m);
+  for (const auto& row : r) w = std::max(w, row.first.size());
+  std::string out;
+  for (const auto& [key, value] : r) {
+    out += "  " + key + std::string(w - key.size() + 2, ' ') + value + "\n";
+  }
+  return out;
+}
+
+}  // namespace pgmcl::io

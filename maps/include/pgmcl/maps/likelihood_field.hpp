@@ -16,6 +16,24 @@
 ///                   at lookup it is projected onto the beam direction and its normal and
 ///                   the squared Mahalanobis distance indexes a 1D quantised table.
 /// The hot loop reads these through the trivially-copyable *View structs below.
+///
+/// The per-beam likelihood (one definition for all kinds, so kinds are comparable).
+/// With d the vector from the endpoint to an obstacle cell centre, u the beam direction and
+///   m2 = (d.u)^2 / sigma_along_eff^2 + (d x u)^2 / sigma_across_eff^2
+/// its squared Mahalanobis distance in the metric of Eq. (6), minimised over obstacle cells:
+///   p(endpoint) = w_hit * exp(-m2 / 2) / (sqrt(2 pi) sigma_along_eff) + w_rand / max_range.
+/// Eq. (6) is a density per m^2; a range reading is a density per metre along the beam, so
+/// the hit term keeps the along-beam normaliser of Eq. (4) and uses the across-beam factor
+/// exp(-y^2 / 2 sigma_y^2) unnormalised (peak 1), i.e. as a penalty for lateral misfit.
+/// Both terms are then per metre and the mixture with the uniform term is well defined.
+/// Endpoints with m2 >= reach_sigmas^2 (and cells farther than reach_sigmas * max(sigma_eff)
+/// from every obstacle) read the background ll_background = log(w_rand / max_range)
+/// (with w_rand = 0: the hit term's value at m2 = reach_sigmas^2).
+///
+/// Quantisation scale: nats_per_step = (ll_max - ll_background) / 255, ll_max = ll(m2 = 0),
+/// q = round((ll_max - ll) / nats_per_step), so q = 0 is a perfect hit and 255 the floor.
+/// Paper sigmas on a 5 mm grid: ~0.041 nats per step; on a 5 cm grid: ~0.036.
+/// (If w_hit = 0 the model is flat: every q, the background included, is 0.)
 
 #include <cmath>
 #include <cstdint>
@@ -95,9 +113,9 @@ struct OffsetView {
   int height = 0;
   const std::uint8_t* lut = nullptr;  ///< q as a function of squared Mahalanobis distance
   int lut_size = 0;
-  float lut_steps_per_unit = 0.0f;    ///< LUT index = m2 * lut_steps_per_unit
-  float inv_var_along = 0.0f;         ///< 1 / sigma_along^2, in 1/cells^2
-  float inv_var_across = 0.0f;        ///< 1 / sigma_across^2, in 1/cells^2
+  float lut_steps_per_unit = 0.0f;  ///< LUT index = m2 * lut_steps_per_unit
+  float inv_var_along = 0.0f;       ///< 1 / sigma_along^2, in 1/cells^2
+  float inv_var_across = 0.0f;      ///< 1 / sigma_across^2, in 1/cells^2
   std::uint8_t background = 255;
 
   /// (ux, uy) is the unit beam direction in the grid frame.
@@ -106,9 +124,8 @@ struct OffsetView {
     if (static_cast<unsigned>(c) >= static_cast<unsigned>(width) ||
         static_cast<unsigned>(r) >= static_cast<unsigned>(height))
       return background;
-    const std::size_t i =
-        2 * (static_cast<std::size_t>(r) * static_cast<std::size_t>(width) +
-             static_cast<std::size_t>(c));
+    const std::size_t i = 2 * (static_cast<std::size_t>(r) * static_cast<std::size_t>(width) +
+                               static_cast<std::size_t>(c));
     const std::int8_t dc = off[i];
     if (dc == kNoObstacle) return background;
     // Vector from the endpoint to the obstacle cell's centre, in cells.
@@ -118,8 +135,7 @@ struct OffsetView {
     const float across = dy * ux - dx * uy;
     const float m2 = along * along * inv_var_along + across * across * inv_var_across;
     const float idx = m2 * lut_steps_per_unit;
-    return idx < static_cast<float>(lut_size - 1) ? lut[static_cast<int>(idx)]
-                                                  : lut[lut_size - 1];
+    return idx < static_cast<float>(lut_size - 1) ? lut[static_cast<int>(idx)] : lut[lut_size - 1];
   }
 };
 
@@ -140,25 +156,29 @@ struct BeamLikelihoodParams {
 
 struct LikelihoodFieldOptions {
   TableKind kind = TableKind::kIsotropic;
-  int orientation_bins = 16;          ///< K for kOrientedBins
-  double reach_sigmas = 4.0;          ///< beyond this many sigma_along_eff: background
-  double isotropy_tolerance = 0.05;   ///< |sa/sc - 1| below this: oriented -> isotropic
+  int orientation_bins = 16;  ///< K for kOrientedBins
+  double reach_sigmas = 4.0;  ///< beyond this many sigma_along_eff: background
+  /// |sigma_along_eff / sigma_across_eff - 1| below this: oriented -> isotropic. 0.1 makes
+  /// the paper's sigmas isotropic at 5 cm (ratio 1.052) and anisotropic at 2.5 cm (1.176).
+  double isotropy_tolerance = 0.1;
   std::size_t max_table_bytes = std::size_t{8} << 30;  ///< clear error beyond this
 };
 
 /// What a build did, for reports and tests.
 struct LikelihoodFieldStats {
-  double sigma_along_eff = 0.0;    ///< metres
-  double sigma_across_eff = 0.0;   ///< metres
+  double sigma_along_eff = 0.0;   ///< metres
+  double sigma_across_eff = 0.0;  ///< metres
   double nats_per_step = 0.0;
-  double ll_max = 0.0;             ///< log-likelihood at q = 0 (per beam, nats)
-  double ll_background = 0.0;      ///< log-likelihood of the background value
+  double ll_max = 0.0;         ///< log-likelihood at q = 0 (per beam, nats)
+  double ll_background = 0.0;  ///< log-likelihood of the background value
   int reach_cells = 0;
   bool orientation_skipped = false;  ///< oriented requested but kernel isotropic at this res
   std::size_t cells_total = 0;
-  std::size_t cells_computed = 0;    ///< cells within reach of an obstacle
-  std::size_t bytes = 0;
-  double bytes_per_cell = 0.0;
+  std::size_t cells_computed = 0;   ///< cells holding a non-background value (within reach)
+  std::size_t sources_stamped = 0;  ///< obstacle cells whose kernel was stamped
+  std::size_t bytes = 0;            ///< hot tables + LUT
+  double bytes_per_cell = 0.0;      ///< bytes / cells_total
+  std::size_t oracle_bytes = 0;     ///< obstacle bitmask kept for exact_log_likelihood()
   double build_seconds = 0.0;
 };
 
@@ -166,9 +186,11 @@ struct LikelihoodFieldStats {
 /// thread-safe).
 class LikelihoodField {
  public:
-  /// Throws std::invalid_argument for invalid params (sigma <= 0, weights outside [0, 1]
-  /// or not summing to 1 within 1e-9, bins < 1) and std::length_error when the table would
-  /// exceed options.max_table_bytes.
+  /// Throws std::invalid_argument for invalid params (sigmas not positive and finite,
+  /// model_mismatch < 0, weights outside [0, 1] or not summing to 1 within 1e-9,
+  /// max_range <= 0, bins < 1, reach_sigmas <= 0, an empty grid, or an offset-field reach
+  /// beyond 127 cells) and std::length_error (with the byte count) when the table would
+  /// exceed options.max_table_bytes; both before allocating the table.
   LikelihoodField(const OccupancyGrid& grid, const BeamLikelihoodParams& params,
                   const LikelihoodFieldOptions& options = {});
 
@@ -191,7 +213,14 @@ class LikelihoodField {
   /// Exact (unquantised) per-beam log-likelihood of an endpoint at map-local metres (x, y)
   /// for a beam of map-local direction `beam_angle`: the oracle for the tables, Eq. (6)
   /// evaluated against the nearest obstacle in the Mahalanobis metric of that direction.
+  /// Outside the map it still evaluates the model (the views return background there).
+  /// Throws std::invalid_argument for non-finite input.
   [[nodiscard]] double exact_log_likelihood(double x, double y, double beam_angle) const;
+  /// The per-beam log-likelihood as a function of the squared Mahalanobis distance m2
+  /// (see the file comment), unquantised; background for m2 >= reach_sigmas^2.
+  [[nodiscard]] double log_likelihood_of_m2(double m2) const noexcept;
+  /// Quantised value of log_likelihood_of_m2(m2): what the tables store.
+  [[nodiscard]] std::uint8_t quantise_m2(double m2) const noexcept;
 
  private:
   TableKind kind_ = TableKind::kIsotropic;
@@ -203,12 +232,25 @@ class LikelihoodField {
   double resolution_ = 0.0;
   Pose2 origin_{};
   int bins_ = 1;
-  std::vector<std::uint8_t> q_;         // isotropic / oriented planes
-  std::vector<std::int8_t> offsets_;    // offset field
-  std::vector<std::uint8_t> lut_;       // offset field LUT
+  std::vector<std::uint8_t> q_;       // isotropic / oriented planes
+  std::vector<std::int8_t> offsets_;  // offset field
+  std::vector<std::uint8_t> lut_;     // offset field LUT
   float lut_steps_per_unit_ = 0.0f;
-  std::vector<std::int32_t> obstacle_cells_;  // for the exact oracle (col, row pairs)
-  std::shared_ptr<const void> oracle_index_;  // kd-tree over obstacle cells (opaque)
+  int lut_size_ = 0;
+  double log_hit_norm_ = 0.0;  // log(w_hit / (sqrt(2 pi) sigma_along_eff)), -inf if w_hit = 0
+  double log_floor_ = 0.0;     // log(w_rand / max_range), -inf if w_rand = 0
+  double reach_m2_ = 0.0;      // reach_sigmas^2
+  std::uint8_t background_ = 255;
+  // Exact oracle: obstacle bitmask, one padded run of 64-bit words per row.
+  std::vector<std::uint64_t> obstacle_bits_;
+  int words_per_row_ = 0;
+
+  [[nodiscard]] bool obstacle_bit(int col, int row) const noexcept {
+    const std::uint64_t w =
+        obstacle_bits_[static_cast<std::size_t>(row) * static_cast<std::size_t>(words_per_row_) +
+                       static_cast<std::size_t>(col >> 6)];
+    return ((w >> (col & 63)) & 1u) != 0;
+  }
 };
 
 }  // namespace pgmcl::maps

@@ -4,6 +4,7 @@
 
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
+#include <zlib.h>
 
 #include <climits>
 #include <cstdint>
@@ -33,12 +34,54 @@ void append_bytes(void* context, void* data, int size) {
   out->insert(out->end(), p, p + size);
 }
 
+bool is_png(const Bytes& b) noexcept {
+  static constexpr std::uint8_t kSig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (b.size() < 8) return false;
+  for (int i = 0; i < 8; ++i) {
+    if (b[static_cast<std::size_t>(i)] != kSig[i]) return false;
+  }
+  return true;
+}
+
+std::uint32_t be32(const std::uint8_t* p) noexcept {
+  return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) |
+         std::uint32_t{p[3]};
+}
+
+// stb_image does not verify PNG chunk CRCs, so a flipped byte would decode as a silently
+// wrong map. Walk the chunks (PNG spec, section 5.3) and check every CRC up to IEND.
+void check_png_chunks(const Bytes& b, const std::string& path) {
+  std::size_t pos = 8;
+  while (true) {
+    if (b.size() - pos < 12) {
+      throw MapError(path, 0, "pixel data",
+                     "corrupt PNG: truncated at byte " + std::to_string(pos) + " before IEND");
+    }
+    const std::uint32_t len = be32(&b[pos]);
+    const std::string type(reinterpret_cast<const char*>(&b[pos + 4]), 4);
+    if (len > b.size() - pos - 12) {
+      throw MapError(path, 0, "pixel data",
+                     "corrupt PNG: chunk '" + type + "' at byte " + std::to_string(pos) +
+                         " claims " + std::to_string(len) + " bytes, file is truncated");
+    }
+    const uLong crc = crc32(crc32(0L, Z_NULL, 0), &b[pos + 4], static_cast<uInt>(len) + 4);
+    if (crc != be32(&b[pos + 8 + len])) {
+      throw MapError(
+          path, 0, "pixel data",
+          "corrupt PNG: CRC mismatch in chunk '" + type + "' at byte " + std::to_string(pos));
+    }
+    if (type == "IEND") return;
+    pos += 12 + static_cast<std::size_t>(len);
+  }
+}
+
 }  // namespace
 
 Image decode_stb(const Bytes& bytes, const std::string& path) {
   if (bytes.size() > static_cast<std::size_t>(INT_MAX)) {
     throw MapError(path, 0, "image", "file too large");
   }
+  if (is_png(bytes)) check_png_chunks(bytes, path);
   const auto* data = bytes.data();
   const int len = static_cast<int>(bytes.size());
   int w = 0, h = 0, comp = 0;

@@ -145,6 +145,11 @@ TEST_F(MapIoErrors, CorruptPng) {
   std::vector<std::uint8_t> garbage = png;
   for (std::size_t i = 41; i < garbage.size() - 12; ++i) garbage[i] = 0xA5;
   expect_image_error("garbage.png", garbage, {"garbage.png", "corrupt"});
+  // A single flipped bit in the compressed pixels (stb alone would not notice: it does
+  // not check CRCs).
+  std::vector<std::uint8_t> flipped = png;
+  flipped[png.size() - 20] ^= 0x01;
+  expect_image_error("flip.png", flipped, {"flip.png", "pixel data", "CRC"});
   // Not an image at all.
   expect_image_error("text.png", std::vector<std::uint8_t>(64, 'z'),
                      {"text.png", "image", "not a readable image"});

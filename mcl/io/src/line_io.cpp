@@ -1,0 +1,105 @@
+#include "pgmcl/io/line_io.hpp"
+
+#include <zlib.h>
+
+#include <cerrno>
+#include <cstring>
+#include <utility>
+
+#include "pgmcl/io/errors.hpp"
+
+namespace pgmcl::io {
+namespace {
+
+gzFile as_gz(void* f) noexcept {
+  return static_cast<gzFile>(f);
+}
+
+std::string gz_message(void* f) {
+  int code = Z_OK;
+  const char* msg = gzerror(as_gz(f), &code);
+  if (code == Z_ERRNO) return std::strerror(errno);
+  return msg != nullptr ? msg : "unknown zlib error";
+}
+
+}  // namespace
+
+bool is_gzip_path(std::string_view path) noexcept {
+  return path.size() >= 3 && path.substr(path.size() - 3) == ".gz";
+}
+
+LineReader::LineReader(std::string path) : path_(std::move(path)) {
+  file_ = gzopen(path_.c_str(), "rb");
+  if (file_ == nullptr) {
+    throw IoError("cannot open '" + path_ + "' for reading: " + std::strerror(errno));
+  }
+  gzbuffer(as_gz(file_), 1 << 17);
+}
+
+LineReader::~LineReader() {
+  if (file_ != nullptr) gzclose(as_gz(file_));
+}
+
+bool LineReader::next(std::string_view& line) {
+  buffer_.clear();
+  char chunk[8192];
+  bool got_any = false;
+  // gzgets stops at the buffer size, so long lines (a 1081-beam scan) arrive in pieces.
+  while (gzgets(as_gz(file_), chunk, sizeof(chunk)) != nullptr) {
+    got_any = true;
+    const std::size_t n = std::strlen(chunk);
+    buffer_.append(chunk, n);
+    if (n > 0 && chunk[n - 1] == '\n') break;
+  }
+  if (!got_any) {
+    int code = Z_OK;
+    gzerror(as_gz(file_), &code);
+    if (code != Z_OK) {
+      throw IoError("error reading '" + path_ + "' after line " + std::to_string(line_number_) +
+                    ": " + gz_message(file_));
+    }
+    return false;
+  }
+  int code = Z_OK;
+  gzerror(as_gz(file_), &code);
+  if (code != Z_OK) {
+    throw IoError("error reading '" + path_ + "' at line " + std::to_string(line_number_ + 1) +
+                  ": " + gz_message(file_));
+  }
+  while (!buffer_.empty() && (buffer_.back() == '\n' || buffer_.back() == '\r')) {
+    buffer_.pop_back();
+  }
+  ++line_number_;
+  line = buffer_;
+  return true;
+}
+
+LineWriter::LineWriter(std::string path) : path_(std::move(path)) {
+  // "T" writes uncompressed through the same zlib API (zlib >= 1.2.6).
+  file_ = gzopen(path_.c_str(), is_gzip_path(path_) ? "wb6" : "wbT");
+  if (file_ == nullptr) {
+    throw IoError("cannot open '" + path_ + "' for writing: " + std::strerror(errno));
+  }
+}
+
+LineWriter::~LineWriter() {
+  if (file_ != nullptr) gzclose(as_gz(file_));
+}
+
+void LineWriter::write_line(std::string_view line) {
+  if (file_ == nullptr) throw IoError("write to closed file '" + path_ + "'");
+  const bool ok = (line.empty() ||
+                   gzwrite(as_gz(file_), line.data(), static_cast<unsigned>(line.size())) > 0) &&
+                  gzputc(as_gz(file_), '\n') != -1;
+  if (!ok) throw IoError("error writing '" + path_ + "': " + gz_message(file_));
+}
+
+void LineWriter::close() {
+  if (file_ == nullptr) return;
+  const int rc = gzclose(as_gz(file_));
+  file_ = nullptr;
+  if (rc != Z_OK)
+    throw IoError("error closing '" + path_ + "' (zlib code " + std::to_string(rc) + ")");
+}
+
+}  // namespace pgmcl::io

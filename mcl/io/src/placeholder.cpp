@@ -1,2 +1,0 @@
-// Placeholder so the component links before its first source lands; delete when adding real sources.
-namespace pgmcl::detail { int io_placeholder() { return 0; } }

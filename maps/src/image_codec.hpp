@@ -41,12 +41,13 @@ void write_file_bytes(const std::string& path, const Bytes& bytes);
 /// Writes an 8-bit single-channel image as binary P5.
 [[nodiscard]] Bytes encode_pgm(const Image& image, const std::string& comment);
 
-/// PNG and the other formats stb_image knows, 8 or 16 bits per sample.
-[[nodiscard]] Image decode_stb(const Bytes& bytes, const std::string& path);
+/// PNG (any colour type, 8 or 16 bits per sample), chunk CRCs verified.
+[[nodiscard]] bool is_png(const Bytes& bytes) noexcept;
+[[nodiscard]] Image decode_png(const Bytes& bytes, const std::string& path);
 /// Writes an 8-bit image (1..4 channels) as PNG.
 [[nodiscard]] Bytes encode_png(const Image& image, const std::string& path);
 
-/// Sniffs the content: gzip is unwrapped first, then PNM or stb.
+/// Sniffs the content: gzip is unwrapped first, then PNM or PNG; anything else is an error.
 [[nodiscard]] Image decode_image(const Bytes& bytes, const std::string& path);
 
 /// Shortest text that reads back as exactly `v`, and still reads as a float ("1.0").

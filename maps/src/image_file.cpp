@@ -123,7 +123,9 @@ Image decode_image(const Bytes& bytes, const std::string& path) {
     return decode_image(inflated, path);
   }
   if (is_pnm(bytes)) return decode_pnm(bytes, path);
-  return decode_stb(bytes, path);
+  if (is_png(bytes)) return decode_png(bytes, path);
+  throw MapError(path, 0, "image",
+                 "not a PGM/PPM or PNG file (optionally gzipped); convert other formats to PNG");
 }
 
 }  // namespace pgmcl::maps::detail

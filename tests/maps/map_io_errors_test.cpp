@@ -2,6 +2,7 @@
 // line where there is one), never crash and never return a partial map.
 
 #include <gtest/gtest.h>
+#include <stb/stb_image_write.h>
 
 #include <cstdint>
 #include <string>
@@ -152,7 +153,40 @@ TEST_F(MapIoErrors, CorruptPng) {
   expect_image_error("flip.png", flipped, {"flip.png", "pixel data", "CRC"});
   // Not an image at all.
   expect_image_error("text.png", std::vector<std::uint8_t>(64, 'z'),
-                     {"text.png", "image", "not a readable image"});
+                     {"text.png", "image", "not a PGM/PPM or PNG"});
+}
+
+// Bitwise CRC-32 (PNG spec, Annex D), to forge chunks with valid checksums.
+std::uint32_t crc32_of(const std::uint8_t* p, std::size_t n) {
+  std::uint32_t c = 0xffffffffu;
+  for (std::size_t i = 0; i < n; ++i) {
+    c ^= p[i];
+    for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1u)));
+  }
+  return c ^ 0xffffffffu;
+}
+
+void put_be32(std::vector<std::uint8_t>& b, std::size_t at, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i)
+    b[at + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(v >> (24 - 8 * i));
+}
+
+TEST_F(MapIoErrors, PngClaimingAHugeRasterIsRefusedBeforeDecoding) {
+  // testmap.png with IHDR patched to 30000 x 30000 and a correct IHDR CRC: its 50-byte IDAT
+  // cannot inflate to 900 MB, so the loader must refuse it without allocating that much.
+  std::vector<std::uint8_t> png = test::read_bytes(test::data_dir() + "/nav2/testmap/testmap.png");
+  ASSERT_GT(png.size(), 33u);
+  put_be32(png, 16, 30000);
+  put_be32(png, 20, 30000);
+  put_be32(png, 29, crc32_of(&png[12], 17));
+  expect_image_error("huge.png", png, {"huge.png", "pixel data", "30000 x 30000"});
+}
+
+TEST_F(MapIoErrors, OtherImageFormatsAreRefused) {
+  const std::vector<std::uint8_t> px(4, 0);
+  ASSERT_NE(stbi_write_bmp(dir_.file("m.bmp").c_str(), 2, 2, 1, px.data()), 0);
+  const std::string path = yaml(test::map_yaml("m.bmp"));
+  expect_map_error([&] { (void)load_map(path); }, {"m.bmp", "image", "PNG"});
 }
 
 TEST_F(MapIoErrors, CorruptGzip) {

@@ -10,9 +10,10 @@
 ///  - raw:     v = round(shade * 255); 0..100 is kept as is, anything else -> -1.
 /// Image rows are top-down; grid row 0 is the bottom row, so rows are flipped on load/save.
 ///
-/// Images: PGM/PPM (P2, P3, P5, P6; 8-bit, or 16-bit when maxval > 255), PNG (and the other
-/// formats stb_image reads: BMP, JPEG, TGA, ...), each optionally gzip-compressed
-/// (detected from the content, e.g. `image: foo.pgm.gz`).
+/// Images: PGM/PPM (P2, P3, P5, P6; 8-bit, or 16-bit when maxval > 255) and PNG (grey,
+/// grey+alpha, RGB, RGBA, palette; 8 or 16 bits), each optionally gzip-compressed (detected
+/// from the content, e.g. `image: foo.pgm.gz`). Other formats (BMP, JPEG, ...) are refused:
+/// they cannot be checked for truncation, and JPEG is lossy.
 ///
 /// All validation is always on; every failure throws MapError naming the file, the YAML
 /// line when there is one, and the field. No partial map is ever returned.

@@ -1,6 +1,8 @@
-// PNG (and BMP, JPEG, TGA, ...) through Debian's libstb. The shared library holds the
-// implementations, so no STB_*_IMPLEMENTATION here. stb's flip flag is process-global
-// state; the loader flips rows itself instead.
+// PNG through Debian's libstb (the shared library holds the implementations, so no
+// STB_*_IMPLEMENTATION here). stb's flip flag is process-global state; the loader flips
+// rows itself. Only PNG goes to stb: its chunk structure lets us prove the file complete
+// and intact first, whereas stb's readers for BMP, TGA, ... pad a truncated file with
+// zeros and would return a partial map.
 
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
@@ -9,6 +11,7 @@
 #include <climits>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <string>
 
@@ -34,6 +37,8 @@ void append_bytes(void* context, void* data, int size) {
   out->insert(out->end(), p, p + size);
 }
 
+}  // namespace
+
 bool is_png(const Bytes& b) noexcept {
   static constexpr std::uint8_t kSig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
   if (b.size() < 8) return false;
@@ -43,14 +48,26 @@ bool is_png(const Bytes& b) noexcept {
   return true;
 }
 
+namespace {
+
 std::uint32_t be32(const std::uint8_t* p) noexcept {
   return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) |
          std::uint32_t{p[3]};
 }
 
 // stb_image does not verify PNG chunk CRCs, so a flipped byte would decode as a silently
-// wrong map. Walk the chunks (PNG spec, section 5.3) and check every CRC up to IEND.
+// wrong map. Walk the chunks (PNG spec, section 5) and check every CRC up to IEND. Also
+// refuse an IDAT too small to inflate to the raster IHDR promises (deflate cannot exceed
+// 1032:1), before stb allocates that raster.
 void check_png_chunks(const Bytes& b, const std::string& path) {
+  if (b.size() < 8 + 25 || be32(&b[8]) != 13 || std::memcmp(&b[12], "IHDR", 4) != 0) {
+    throw MapError(path, 0, "pixel data", "corrupt PNG: no IHDR chunk after the signature");
+  }
+  const std::uint64_t w = be32(&b[16]), h = be32(&b[20]);
+  const unsigned depth = b[24], colour = b[25];
+  const unsigned channels = colour == 2 ? 3 : colour == 4 ? 2 : colour == 6 ? 4 : 1;
+  const std::uint64_t raw_bytes = h * ((w * channels * depth + 7) / 8);
+  std::uint64_t idat = 0;
   std::size_t pos = 8;
   while (true) {
     if (b.size() - pos < 12) {
@@ -70,23 +87,30 @@ void check_png_chunks(const Bytes& b, const std::string& path) {
           path, 0, "pixel data",
           "corrupt PNG: CRC mismatch in chunk '" + type + "' at byte " + std::to_string(pos));
     }
-    if (type == "IEND") return;
+    if (type == "IDAT") idat += len;
+    if (type == "IEND") break;
     pos += 12 + static_cast<std::size_t>(len);
+  }
+  if (idat * 1032 + 1024 < raw_bytes) {
+    throw MapError(path, 0, "pixel data",
+                   "corrupt PNG: " + std::to_string(idat) + " bytes of IDAT cannot hold a " +
+                       std::to_string(w) + " x " + std::to_string(h) + " image");
   }
 }
 
 }  // namespace
 
-Image decode_stb(const Bytes& bytes, const std::string& path) {
+Image decode_png(const Bytes& bytes, const std::string& path) {
   if (bytes.size() > static_cast<std::size_t>(INT_MAX)) {
     throw MapError(path, 0, "image", "file too large");
   }
-  if (is_png(bytes)) check_png_chunks(bytes, path);
+  if (!is_png(bytes)) throw MapError(path, 0, "image", "not a PNG file");
+  check_png_chunks(bytes, path);
   const auto* data = bytes.data();
   const int len = static_cast<int>(bytes.size());
   int w = 0, h = 0, comp = 0;
   if (stbi_info_from_memory(data, len, &w, &h, &comp) == 0) {
-    throw MapError(path, 0, "image", "not a readable image (PGM, PNG, BMP, ...): " + stb_reason());
+    throw MapError(path, 0, "pixel data", "corrupt PNG: " + stb_reason());
   }
   if (w <= 0 || h <= 0 || comp < 1 || comp > 4 ||
       static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) > kMaxPixels) {

@@ -123,6 +123,71 @@ TEST(MapIoModes, SixteenBitPgmUsesMaxval) {
             (std::vector<int>{0, 51, -1, -1}));
 }
 
+// Bitwise CRC-32 (PNG spec, Annex D).
+std::uint32_t crc32_of(const std::vector<std::uint8_t>& b, std::size_t from) {
+  std::uint32_t c = 0xffffffffu;
+  for (std::size_t i = from; i < b.size(); ++i) {
+    c ^= b[i];
+    for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1u)));
+  }
+  return c ^ 0xffffffffu;
+}
+
+void append_be32(std::vector<std::uint8_t>& b, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) b.push_back(static_cast<std::uint8_t>(v >> (24 - 8 * i)));
+}
+
+void append_chunk(std::vector<std::uint8_t>& png, const char* type,
+                  const std::vector<std::uint8_t>& data) {
+  append_be32(png, static_cast<std::uint32_t>(data.size()));
+  std::vector<std::uint8_t> body(type, type + 4);
+  body.insert(body.end(), data.begin(), data.end());
+  png.insert(png.end(), body.begin(), body.end());
+  append_be32(png, crc32_of(body, 0));
+}
+
+// A 16-bit greyscale PNG (stbi_write_png only writes 8 bits): one row, the raster in a
+// zlib stream made of a single stored (uncompressed) deflate block (RFC 1950/1951).
+std::vector<std::uint8_t> png16_row(const std::vector<std::uint16_t>& px) {
+  std::vector<std::uint8_t> raw = {0};  // filter type 0
+  for (const std::uint16_t v : px) {
+    raw.push_back(static_cast<std::uint8_t>(v >> 8));
+    raw.push_back(static_cast<std::uint8_t>(v & 0xff));
+  }
+  const auto n = static_cast<std::uint16_t>(raw.size());
+  std::vector<std::uint8_t> z = {0x78,
+                                 0x01,
+                                 0x01,
+                                 static_cast<std::uint8_t>(n & 0xff),
+                                 static_cast<std::uint8_t>(n >> 8),
+                                 static_cast<std::uint8_t>(~n & 0xff),
+                                 static_cast<std::uint8_t>((~n >> 8) & 0xff)};
+  z.insert(z.end(), raw.begin(), raw.end());
+  std::uint32_t a = 1, b = 0;  // Adler-32
+  for (const std::uint8_t c : raw) {
+    a = (a + c) % 65521;
+    b = (b + a) % 65521;
+  }
+  append_be32(z, (b << 16) | a);
+  std::vector<std::uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  std::vector<std::uint8_t> ihdr;
+  append_be32(ihdr, static_cast<std::uint32_t>(px.size()));
+  append_be32(ihdr, 1);
+  ihdr.insert(ihdr.end(), {16, 0, 0, 0, 0});  // depth 16, greyscale, no interlace
+  append_chunk(png, "IHDR", ihdr);
+  append_chunk(png, "IDAT", z);
+  append_chunk(png, "IEND", {});
+  return png;
+}
+
+TEST(MapIoModes, SixteenBitPngMatchesSixteenBitPgm) {
+  const TempDir dir;
+  test::write_bytes(dir.file("w.png"), png16_row({0, 13000, 32768, 65535}));
+  EXPECT_EQ(load_row(dir, "w.png", kYaml + "negate: 0\n"), (std::vector<int>{100, 100, -1, 0}));
+  EXPECT_EQ(load_row(dir, "w.png", kYaml + "negate: 0\nmode: raw\n"),
+            (std::vector<int>{0, 51, -1, -1}));
+}
+
 TEST(MapIoModes, AsciiPgmWithCommentsAndSmallMaxval) {
   // maxval 15: 0 -> occupied, 8 -> occ .467 unknown, 15 -> free.
   const TempDir dir;

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "pgmcl/maps/se2.hpp"
+#include "grid_key.hpp"
 #include "pgmcl/mcl/random.hpp"
 
 namespace pgmcl {
@@ -43,16 +43,6 @@ double lower_normal_quantile(double p) {
   const double u = e * std::sqrt(2.0 * std::numbers::pi) * std::exp(0.5 * x * x);
   // For subnormal p, exp(x^2 / 2) overflows; Acklam's value is then kept unrefined.
   return std::isfinite(u) ? x - u / (1.0 + 0.5 * x * u) : x;
-}
-
-constexpr std::int64_t kXyLimit = std::int64_t{1} << 23;  // 24-bit signed bin indices
-
-/// floor(v) as a bin index clamped to [-kXyLimit, kXyLimit - 1]; NaN maps to the low end.
-[[nodiscard]] inline std::uint64_t xy_field(double v) noexcept {
-  double f = std::floor(v);
-  if (!(f >= -static_cast<double>(kXyLimit))) f = -static_cast<double>(kXyLimit);
-  if (f > static_cast<double>(kXyLimit - 1)) f = static_cast<double>(kXyLimit - 1);
-  return static_cast<std::uint64_t>(static_cast<std::int64_t>(f) + kXyLimit);  // [0, 2^24)
 }
 
 }  // namespace
@@ -92,8 +82,8 @@ KldBinner::KldBinner(double bin_x, double bin_y, double bin_theta)
         "KldBinner: bin sizes must be finite and > 0 (got x = " + std::to_string(bin_x) +
         " m, y = " + std::to_string(bin_y) + " m, theta = " + std::to_string(bin_theta) + " rad)");
   }
-  const double sectors = std::max(1.0, std::round(2.0 * std::numbers::pi / bin_theta));
-  if (sectors > 65535.0) {
+  const double sectors = detail::sector_count(bin_theta);
+  if (sectors > static_cast<double>(detail::kMaxSectors)) {
     throw std::invalid_argument("KldBinner: bin_theta = " + std::to_string(bin_theta) +
                                 " rad gives more than 65535 heading bins");
   }
@@ -119,13 +109,8 @@ void KldBinner::clear() noexcept {
 }
 
 std::uint64_t KldBinner::key_of(double x, double y, double theta) const noexcept {
-  const double t = (wrap_angle(theta) + std::numbers::pi) * inv_theta_;
-  // t is in [0, theta_bins] up to rounding; theta = pi lands on theta_bins -> bin 0.
-  auto it = static_cast<std::size_t>(std::max(0.0, std::floor(t)));
-  if (it >= theta_bins_) it -= theta_bins_;
-  if (it >= theta_bins_) it = 0;  // NaN heading or rounding beyond the last edge
-  return (xy_field(x * inv_x_) << 40) | (xy_field(y * inv_y_) << 16) |
-         static_cast<std::uint64_t>(it);
+  return detail::pack_cell(detail::cell_field(x * inv_x_), detail::cell_field(y * inv_y_),
+                           detail::sector_of(theta, inv_theta_, theta_bins_));
 }
 
 bool KldBinner::insert_key(std::uint64_t key) noexcept {

@@ -68,6 +68,7 @@ detail::Stamp make_stamp(const detail::CellMetric& metric, int reach, const Like
   st.q.resize(static_cast<std::size_t>(side) * static_cast<std::size_t>(side));
   st.lo.assign(static_cast<std::size_t>(side), reach + 1);
   st.hi.assign(static_cast<std::size_t>(side), -reach - 1);
+  st.argmin.assign(static_cast<std::size_t>(side), 0);
   for (int vy = -reach; vy <= reach; ++vy) {
     const auto row = static_cast<std::size_t>(vy + reach);
     for (int vx = -reach; vx <= reach; ++vx) {
@@ -78,6 +79,9 @@ detail::Stamp make_stamp(const detail::CellMetric& metric, int reach, const Like
         st.hi[row] = std::max(st.hi[row], vx);
       }
     }
+    const std::uint8_t* r = st.q.data() + row * static_cast<std::size_t>(side) + reach;
+    for (int vx = st.lo[row]; vx <= st.hi[row]; ++vx)
+      if (r[vx] < r[st.argmin[row]] || vx == st.lo[row]) st.argmin[row] = vx;
   }
   return st;
 }

@@ -46,7 +46,7 @@ ObstacleScan scan_obstacles(const OccupancyGrid& grid, bool all_obstacles, Table
   out.words_per_row = (w + 63) / 64;
   const auto wpr = static_cast<std::size_t>(out.words_per_row);
   out.bits.assign(wpr * static_cast<std::size_t>(h), 0);
-  out.sources.resize(static_cast<std::size_t>(h));
+  out.runs.resize(static_cast<std::size_t>(h));
 #ifdef _OPENMP
 #pragma omp parallel
 #endif
@@ -67,14 +67,19 @@ ObstacleScan scan_obstacles(const OccupancyGrid& grid, bool all_obstacles, Table
       } else {
         std::fill(obs3.begin(), obs3.end(), std::uint8_t{0});
       }
-      std::vector<std::int32_t>& src = out.sources[static_cast<std::size_t>(r)];
+      auto& runs = out.runs[static_cast<std::size_t>(r)];
       for (int c = 0; c < w; ++c) {
         if (cur[c] < thr) continue;
         bits[c >> 6] |= std::uint64_t{1} << (c & 63);
         const bool interior = c > 0 && c + 1 < w && obs3[static_cast<std::size_t>(c) - 1] &&
                               obs3[static_cast<std::size_t>(c)] &&
                               obs3[static_cast<std::size_t>(c) + 1];
-        if (all_obstacles || !interior) src.push_back(c);
+        if (!all_obstacles && interior) continue;
+        if (!runs.empty() && runs.back()[1] == c - 1) {
+          runs.back()[1] = c;
+        } else {
+          runs.push_back({c, c});
+        }
       }
       const std::size_t base = static_cast<std::size_t>(r) * uw;
       if (init == TableInit::kBytes) {
@@ -91,7 +96,8 @@ ObstacleScan scan_obstacles(const OccupancyGrid& grid, bool all_obstacles, Table
       }
     }
   }
-  for (const auto& s : out.sources) out.sources_total += s.size();
+  for (const auto& row : out.runs)
+    for (const auto& run : row) out.sources_total += static_cast<std::size_t>(run[1] - run[0] + 1);
   return out;
 }
 
@@ -104,40 +110,56 @@ std::size_t stamp_min(const ObstacleScan& scan, const std::vector<Stamp>& stamps
   const std::size_t stride = uw * static_cast<std::size_t>(height);
   std::size_t computed = 0;
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 16) reduction(+ : computed)
+#pragma omp parallel reduction(+ : computed)
 #endif
-  for (int y = 0; y < height; ++y) {
-    int xmin = INT_MAX, xmax = -1;
-    for (int p = 0; p < planes; ++p) {
-      const Stamp& st = stamps[static_cast<std::size_t>(p)];
-      std::uint8_t* out =
-          table + static_cast<std::size_t>(p) * stride + static_cast<std::size_t>(y) * uw;
-      for (int vy = -reach; vy <= reach; ++vy) {
-        const int sy = y - vy;  // v = cell - obstacle
-        if (sy < 0 || sy >= height) continue;
-        const auto& cols = scan.sources[static_cast<std::size_t>(sy)];
-        const int lo = st.lo[static_cast<std::size_t>(vy + reach)];
-        const int hi = st.hi[static_cast<std::size_t>(vy + reach)];
-        if (cols.empty() || lo > hi) continue;
-        const std::uint8_t* s =
-            st.q.data() + static_cast<std::ptrdiff_t>((vy + reach) * side + reach);
-        for (const std::int32_t c : cols) {
-          const int x0 = std::max(c + lo, 0), x1 = std::min(c + hi, width - 1);
-          for (int x = x0; x <= x1; ++x) out[x] = std::min(out[x], s[x - c]);
-          xmin = std::min(xmin, x0);
-          xmax = std::max(xmax, x1);
+  {
+    std::vector<std::uint8_t> hit(uw);  // cell of this row non-background in some plane
+#ifdef _OPENMP
+#pragma omp for schedule(dynamic, 16)
+#endif
+    for (int y = 0; y < height; ++y) {
+      int xmin = INT_MAX, xmax = -1;
+      for (int p = 0; p < planes; ++p) {
+        const Stamp& st = stamps[static_cast<std::size_t>(p)];
+        std::uint8_t* out =
+            table + static_cast<std::size_t>(p) * stride + static_cast<std::size_t>(y) * uw;
+        for (int vy = -reach; vy <= reach; ++vy) {
+          const int sy = y - vy;  // v = cell - obstacle
+          if (sy < 0 || sy >= height) continue;
+          const auto& runs = scan.runs[static_cast<std::size_t>(sy)];
+          const auto row = static_cast<std::size_t>(vy + reach);
+          const int lo = st.lo[row], hi = st.hi[row], js = st.argmin[row];
+          if (runs.empty() || lo > hi) continue;
+          const std::uint8_t* s =
+              st.q.data() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(side)) +
+              reach;
+          const std::uint8_t smin = s[js];
+          for (const auto& [c0, c1] : runs) {
+            // x - c1 > js: right flank anchored at c1; x - c0 < js: left flank at c0; else the
+            // window [x - c1, x - c0] holds the row's minimum.
+            for (int j = std::max(lo, -c0); j < js && c0 + j < width; ++j)
+              out[c0 + j] = std::min(out[c0 + j], s[j]);
+            for (int x = std::max(c0 + js, 0), xe = std::min(c1 + js, width - 1); x <= xe; ++x)
+              out[x] = std::min(out[x], smin);
+            for (int j = std::max(js + 1, -c1); j <= hi && c1 + j < width; ++j)
+              out[c1 + j] = std::min(out[c1 + j], s[j]);
+            xmin = std::min(xmin, std::max(c0 + lo, 0));
+            xmax = std::max(xmax, std::min(c1 + hi, width - 1));
+          }
         }
       }
-    }
-    // Cells outside [xmin, xmax] were not stamped in this row; obstacle cells inside the
-    // span hold q = 0. (An obstacle cell out of every stamp only happens when the kernel is
-    // narrower than one cell; it then holds q = 0 but is not counted.)
-    for (int x = xmin; x <= xmax; ++x) {
-      bool any = false;
-      for (int p = 0; p < planes && !any; ++p)
-        any = table[static_cast<std::size_t>(p) * stride + static_cast<std::size_t>(y) * uw +
-                    static_cast<std::size_t>(x)] != background;
-      computed += any ? 1u : 0u;
+      // Cells outside [xmin, xmax] were not stamped in this row; obstacle cells inside the
+      // span hold q = 0. (An obstacle cell out of every stamp only happens when the kernel is
+      // narrower than one cell; it then holds q = 0 but is not counted.) Plane by plane, so
+      // the count reads memory contiguously.
+      if (xmax < xmin) continue;
+      std::fill(hit.begin() + xmin, hit.begin() + xmax + 1, std::uint8_t{0});
+      for (int p = 0; p < planes; ++p) {
+        const std::uint8_t* row =
+            table + static_cast<std::size_t>(p) * stride + static_cast<std::size_t>(y) * uw;
+        for (int x = xmin; x <= xmax; ++x) hit[static_cast<std::size_t>(x)] |= row[x] != background;
+      }
+      for (int x = xmin; x <= xmax; ++x) computed += hit[static_cast<std::size_t>(x)];
     }
   }
   return computed;
@@ -168,10 +190,10 @@ std::size_t stamp_offsets(const ObstacleScan& scan, int reach, double reach_cell
         const int sy = y - vy;
         const int hw = half[static_cast<std::size_t>(vy + reach)];
         if (sy < 0 || sy >= height || hw < 0) continue;
-        const auto& cols = scan.sources[static_cast<std::size_t>(sy)];
-        if (cols.empty()) continue;
-        xmin = std::min(xmin, std::max(cols.front() - hw, 0));
-        xmax = std::max(xmax, std::min(cols.back() + hw, width - 1));
+        const auto& runs = scan.runs[static_cast<std::size_t>(sy)];
+        if (runs.empty()) continue;
+        xmin = std::min(xmin, std::max(runs.front()[0] - hw, 0));
+        xmax = std::max(xmax, std::min(runs.back()[1] + hw, width - 1));
       }
       if (xmax < xmin) continue;
       for (int x = xmin; x <= xmax; ++x) {  // obstacles already hold (0, 0)
@@ -181,10 +203,11 @@ std::size_t stamp_offsets(const ObstacleScan& scan, int reach, double reach_cell
         const int sy = y - vy;
         const int hw = half[static_cast<std::size_t>(vy + reach)];
         if (sy < 0 || sy >= height || hw < 0) continue;
-        for (const std::int32_t c : scan.sources[static_cast<std::size_t>(sy)]) {
-          const int x0 = std::max(c - hw, 0), x1 = std::min(c + hw, width - 1);
+        for (const auto& [c0, c1] : scan.runs[static_cast<std::size_t>(sy)]) {
+          // Within a run the nearest source to column x is the run cell closest to x.
+          const int x0 = std::max(c0 - hw, 0), x1 = std::min(c1 + hw, width - 1);
           for (int x = x0; x <= x1; ++x) {
-            const int vx = x - c;
+            const int vx = x - std::clamp(x, c0, c1);
             const int d2 = vx * vx + vy * vy;
             if (d2 < best[static_cast<std::size_t>(x)]) {
               best[static_cast<std::size_t>(x)] = d2;

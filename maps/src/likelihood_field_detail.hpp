@@ -5,10 +5,14 @@
 // as a row gather: each output row collects the stamps of the obstacle cells in the rows
 // within reach, so rows are independent (OpenMP over rows, no write races) and cells out of
 // every obstacle's reach are written once (the background fill) and never visited again.
+// A run of consecutive source cells in a row is stamped as a whole: the min of a
+// quasi-convex stamp row over a window is its minimum inside the window or the window end
+// nearer to it, so a run costs (length + stamp width) per stamp row, not their product.
 // Only "boundary" obstacle cells are stamped (those with a non-obstacle or off-map cell among
 // their 8 neighbours) when that provably gives the exact minimum, see
 // interior_cells_never_nearest().
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -35,8 +39,9 @@ struct CellMetric {
 
 /// Result of the single O(cells) pass over the grid.
 struct ObstacleScan {
-  std::vector<std::vector<std::int32_t>> sources;  ///< per row: columns of cells to stamp
-  std::vector<std::uint64_t> bits;                 ///< obstacle bitmask, padded rows
+  /// Per row: runs [first, last] of consecutive columns to stamp, left to right.
+  std::vector<std::vector<std::array<std::int32_t, 2>>> runs;
+  std::vector<std::uint64_t> bits;  ///< obstacle bitmask, padded rows
   int words_per_row = 0;
   std::size_t sources_total = 0;
 };
@@ -53,11 +58,13 @@ ObstacleScan scan_obstacles(const OccupancyGrid& grid, bool all_obstacles, Table
                             std::int8_t* offsets);
 
 /// A (2R+1)^2 stamp of q values indexed by the offset v = cell - obstacle, with the span of
-/// columns per stamp row that can hold a value below background.
+/// columns per stamp row that can hold a value below background. Each stamp row is
+/// quasi-convex in vx (q is monotone in m2, m2 is convex in vx), with its minimum at argmin.
 struct Stamp {
   int reach = 0;
   std::vector<std::uint8_t> q;  ///< q[(vy + R) * (2R + 1) + (vx + R)]
   std::vector<int> lo, hi;      ///< per vy + R: vx range with q < background (lo > hi: none)
+  std::vector<int> argmin;      ///< per vy + R: a vx of the row's minimum, in [lo, hi]
 };
 
 /// Min-stamps `stamps[p]` into plane p (plane stride width * height) around every source.

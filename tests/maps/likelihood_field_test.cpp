@@ -210,14 +210,14 @@ TEST(LikelihoodField, ExactOracleMatchesBruteForceOverAllObstacles) {
     std::uniform_real_distribution<double> ux(-2 * res, 122 * res), uy(-2 * res, 92 * res),
         ua(-10.0, 10.0);
     int near = 0;
-    for (int i = 0; i < 4000; ++i) {
+    for (int i = 0; i < 1500; ++i) {
       const double x = ux(rng), y = uy(rng), a = ua(rng);
       const double m2 = bf.m2(x, y, a);
       near += m2 < 16.0 ? 1 : 0;
       ASSERT_NEAR(f.exact_log_likelihood(x, y, a), f.log_likelihood_of_m2(m2), 1e-9)
           << "at (" << x << ", " << y << ") angle " << a;
     }
-    EXPECT_GT(near, 50);  // the sample does exercise the Gaussian part
+    EXPECT_GT(near, 30);  // the sample does exercise the Gaussian part
   }
 }
 
@@ -288,7 +288,7 @@ void check_oriented(const OccupancyGrid& g, const LikelihoodField& f, std::mt199
   const double res = g.resolution(), step = f.stats().nats_per_step;
   const double eps = (ratio(f) * ratio(f) - 1) * std::sin(kPi / (2 * v.bins));
   std::uniform_real_distribution<double> u01(0.0, 1.0);
-  for (const auto& [c, r] : cells_near_obstacles(g, f.stats().reach_cells, 600, rng)) {
+  for (const auto& [c, r] : cells_near_obstacles(g, f.stats().reach_cells, 250, rng)) {
     const double x = (c + 0.5) * res, y = (r + 0.5) * res;
     for (int b = 0; b < v.bins; ++b) {
       const double centre = (b + 0.5) * kPi / v.bins + (b % 2 ? kPi : 0.0);  // either sense
@@ -372,7 +372,7 @@ void check_offset(const OccupancyGrid& g, const LikelihoodField& f, std::mt19937
   const double slack = std::sqrt(2.0) * res / f.stats().sigma_across_eff;
   std::uniform_real_distribution<double> ua(-kPi, kPi), u01(0.0, 1.0);
   double worst_centre = 0.0;
-  for (const auto& [c, row] : cells_near_obstacles(g, f.stats().reach_cells, 3000, rng)) {
+  for (const auto& [c, row] : cells_near_obstacles(g, f.stats().reach_cells, 1200, rng)) {
     const double a = ua(rng);
     const auto ux = static_cast<float>(std::cos(a)), uy = static_cast<float>(std::sin(a));
     // At the cell centre: m2_table in [m2, r^2 m2].
@@ -442,8 +442,8 @@ TEST(LikelihoodField, ViewsReturnBackgroundOutsideTheMapAndBeyondReach) {
 }
 
 TEST(LikelihoodField, SingleObstacleComputesOnlyTheReachDisk) {
-  OccupancyGrid g(1500, 1200, 0.05, {}, kFree);  // 75 m x 60 m, 1.8 M cells
-  g.set(700, 333, kOccupied);
+  OccupancyGrid g(500, 400, 0.05, {}, kFree);  // 25 m x 20 m, 200k cells
+  g.set(300, 133, kOccupied);
   LikelihoodFieldOptions o;
   o.isotropy_tolerance = 0.0;
   for (TableKind k : {TableKind::kIsotropic, TableKind::kOrientedBins, TableKind::kOffsetField}) {

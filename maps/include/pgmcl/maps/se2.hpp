@@ -17,9 +17,15 @@ namespace pgmcl {
   return a - kPi;
 }
 
-/// Float version for the map-local hot path.
+/// Float version for the map-local hot path. The range is (-pi, pi] as float sees it,
+/// i.e. (-float(pi), float(pi)], with float(pi) slightly above pi: in-range inputs are
+/// returned unchanged (so wrapping is idempotent), and a double result that rounds to
+/// -float(pi) is mapped to +float(pi).
 [[nodiscard]] inline float wrap_angle(float a) noexcept {
-  return static_cast<float>(wrap_angle(static_cast<double>(a)));
+  constexpr float kPiF = std::numbers::pi_v<float>;
+  if (a > -kPiF && a <= kPiF) return a;
+  const auto r = static_cast<float>(wrap_angle(static_cast<double>(a)));
+  return r <= -kPiF ? kPiF : r;
 }
 
 /// A planar rigid transform / pose: x, y in metres, theta in radians (kept wrapped).

@@ -44,14 +44,17 @@ PoseEstimate oracle(const Cloud& c) {
   e.mean = {static_cast<double>(sx / sw), static_cast<double>(sy / sw),
             static_cast<double>(std::atan2(ss, sc))};
   e.heading_concentration = static_cast<double>(std::hypot(sc, ss) / sw);
-  Eigen::Matrix<long double, 3, 3> cov = Eigen::Matrix<long double, 3, 3>::Zero();
+  long double cov[3][3] = {};
   for (std::size_t i = 0; i < c.w.size(); ++i) {
-    Eigen::Matrix<long double, 3, 1> d;
-    d << c.x[i] - sx / sw, c.y[i] - sy / sw,
-        wrap_angle(static_cast<double>(c.theta[i]) - e.mean.theta);
-    cov += c.w[i] * d * d.transpose();
+    const long double d[3] = {c.x[i] - sx / sw, c.y[i] - sy / sw,
+                              wrap_angle(static_cast<double>(c.theta[i]) - e.mean.theta)};
+    for (int r = 0; r < 3; ++r) {
+      for (int k = 0; k < 3; ++k) cov[r][k] += c.w[i] * d[r] * d[k];
+    }
   }
-  e.covariance = (cov / sw).cast<double>();
+  for (int r = 0; r < 3; ++r) {
+    for (int k = 0; k < 3; ++k) e.covariance(r, k) = static_cast<double>(cov[r][k] / sw);
+  }
   return e;
 }
 

@@ -156,24 +156,17 @@ class CarmenParser {
 }  // namespace
 
 CarmenLog read_carmen(const std::string& path, const CarmenReadOptions& opt) {
-  LineReader reader(path);
   CarmenParser parser(path, opt);
-  std::string_view line;
-  while (reader.next(line)) parser.feed(line, reader.line_number());
+  detail::for_each_file_line(path,
+                             [&](std::string_view line, std::size_t n) { parser.feed(line, n); });
   return parser.finish();
 }
 
 CarmenLog parse_carmen(std::string_view text, const std::string& source,
                        const CarmenReadOptions& opt) {
   CarmenParser parser(source, opt);
-  std::size_t line_no = 0;
-  while (!text.empty()) {
-    const std::size_t eol = text.find('\n');
-    std::string_view line = text.substr(0, eol);
-    text.remove_prefix(eol == std::string_view::npos ? text.size() : eol + 1);
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    parser.feed(line, ++line_no);
-  }
+  detail::for_each_text_line(text,
+                             [&](std::string_view line, std::size_t n) { parser.feed(line, n); });
   return parser.finish();
 }
 

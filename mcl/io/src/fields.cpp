@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "pgmcl/io/errors.hpp"
+
 namespace pgmcl::io::detail {
 
 void split_fields(std::string_view line, std::vector<std::string_view>& out) {
@@ -125,6 +127,27 @@ void FieldCursor::expect_end(std::string_view last_field) const {
     throw FieldError{std::string(last_field), std::to_string(tokens_.size() - pos_) +
                                                   " unexpected field(s) after it, from '" +
                                                   std::string(tokens_[pos_]) + "'"};
+  }
+}
+
+void parse_fixed_numbers(std::span<const std::string_view> tokens,
+                         std::span<const std::string_view> names, std::span<double> out,
+                         const std::string& source, std::size_t line) {
+  const std::string expected = "expected " + std::to_string(names.size()) + " fields, found " +
+                               std::to_string(tokens.size());
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::string field(names[i]);
+    if (i >= tokens.size()) throw FormatError(source, line, field, "missing (" + expected + ")");
+    const auto v = parse_double(tokens[i]);
+    if (!v)
+      throw FormatError(source, line, field, "not a number: '" + std::string(tokens[i]) + "'");
+    if (!std::isfinite(*v)) {
+      throw FormatError(source, line, field, "not finite: '" + std::string(tokens[i]) + "'");
+    }
+    out[i] = *v;
+  }
+  if (tokens.size() > names.size()) {
+    throw FormatError(source, line, std::string(names.back()), expected);
   }
 }
 

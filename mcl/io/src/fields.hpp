@@ -9,6 +9,8 @@
 #include <string_view>
 #include <vector>
 
+#include "pgmcl/io/line_io.hpp"
+
 namespace pgmcl::io::detail {
 
 /// Thrown by a line parser; the file-level reader adds file and line and decides whether it
@@ -60,5 +62,32 @@ class FieldCursor {
 
 /// "range[17]"
 [[nodiscard]] std::string indexed_name(std::string_view name, std::size_t index);
+
+/// For the simple formats (TUM, relations): exactly names.size() finite numbers into `out`,
+/// else FormatError(source, line, field, ...). The last name stands for extra fields.
+void parse_fixed_numbers(std::span<const std::string_view> tokens,
+                         std::span<const std::string_view> names, std::span<double> out,
+                         const std::string& source, std::size_t line);
+
+/// Calls fn(line, line_number) for every line of `text`, without "\n" or "\r\n".
+template <typename Fn>
+void for_each_text_line(std::string_view text, Fn&& fn) {
+  std::size_t line_no = 0;
+  while (!text.empty()) {
+    const std::size_t eol = text.find('\n');
+    std::string_view line = text.substr(0, eol);
+    text.remove_prefix(eol == std::string_view::npos ? text.size() : eol + 1);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    fn(line, ++line_no);
+  }
+}
+
+/// Same for a file, plain or gzip (IoError if unreadable).
+template <typename Fn>
+void for_each_file_line(const std::string& path, Fn&& fn) {
+  LineReader reader(path);
+  std::string_view line;
+  while (reader.next(line)) fn(line, reader.line_number());
+}
 
 }  // namespace pgmcl::io::detail

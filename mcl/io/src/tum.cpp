@@ -21,26 +21,7 @@ void parse_line(std::string_view line, std::size_t line_no, const std::string& s
   detail::split_fields(line, tokens);
   if (tokens.empty() || tokens.front().front() == '#') return;
   std::array<double, 8> v{};
-  for (std::size_t i = 0; i < kFields.size(); ++i) {
-    if (i >= tokens.size()) {
-      throw FormatError(source, line_no, std::string(kFields[i]),
-                        "missing (expected 8 fields, found " + std::to_string(tokens.size()) + ")");
-    }
-    const auto x = detail::parse_double(tokens[i]);
-    if (!x) {
-      throw FormatError(source, line_no, std::string(kFields[i]),
-                        "not a number: '" + std::string(tokens[i]) + "'");
-    }
-    if (!std::isfinite(*x)) {
-      throw FormatError(source, line_no, std::string(kFields[i]),
-                        "not finite: '" + std::string(tokens[i]) + "'");
-    }
-    v[i] = *x;
-  }
-  if (tokens.size() > kFields.size()) {
-    throw FormatError(source, line_no, "qw",
-                      "expected 8 fields, found " + std::to_string(tokens.size()));
-  }
+  detail::parse_fixed_numbers(tokens, kFields, v, source, line_no);
   const double norm = std::sqrt(v[4] * v[4] + v[5] * v[5] + v[6] * v[6] + v[7] * v[7]);
   if (!(norm > 1e-9)) {
     throw FormatError(source, line_no, "quaternion",
@@ -58,25 +39,19 @@ double yaw_from_quaternion(double qx, double qy, double qz, double qw) noexcept 
 }
 
 Trajectory read_tum(const std::string& path) {
-  LineReader reader(path);
   Trajectory out;
   std::vector<std::string_view> tokens;
-  std::string_view line;
-  while (reader.next(line)) parse_line(line, reader.line_number(), path, tokens, out);
+  detail::for_each_file_line(
+      path, [&](std::string_view line, std::size_t n) { parse_line(line, n, path, tokens, out); });
   return out;
 }
 
 Trajectory parse_tum(std::string_view text, const std::string& source) {
   Trajectory out;
   std::vector<std::string_view> tokens;
-  std::size_t line_no = 0;
-  while (!text.empty()) {
-    const std::size_t eol = text.find('\n');
-    std::string_view line = text.substr(0, eol);
-    text.remove_prefix(eol == std::string_view::npos ? text.size() : eol + 1);
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    parse_line(line, ++line_no, source, tokens, out);
-  }
+  detail::for_each_text_line(text, [&](std::string_view line, std::size_t n) {
+    parse_line(line, n, source, tokens, out);
+  });
   return out;
 }
 

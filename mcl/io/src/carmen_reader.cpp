@@ -1,7 +1,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <sstream>
 #include <utility>
 
 #include "carmen_messages.hpp"
@@ -115,15 +114,16 @@ class CarmenParser {
     const auto [prev, prev_line] = it->second;
     it->second = {stamp, line_no};
     if (stamp >= prev) return;
-    std::ostringstream msg;
-    msg.precision(17);
-    msg << "goes backwards: " << stamp << " after " << prev << " (previous " << type << " on line "
-        << prev_line << ")";
+    std::string msg = "goes backwards: ";
+    detail::append_number(msg, stamp);
+    msg += " after ";
+    detail::append_number(msg, prev);
+    msg += " (previous " + std::string(type) + " on line " + std::to_string(prev_line) + ")";
     ++log_.report.backwards;
     ++log_.report.backwards_by_type[std::string(type)];
-    if (opt_.strict) throw FormatError(log_.report.source, line_no, "timestamp", msg.str());
+    if (opt_.strict) throw FormatError(log_.report.source, line_no, "timestamp", msg);
     keep(log_.report.backwards_lines,
-         LineIssue{line_no, std::string(type), "timestamp", msg.str()});
+         LineIssue{line_no, std::string(type), "timestamp", std::move(msg)});
   }
 
   std::optional<double> param_number(const std::string& name) const {

@@ -1,0 +1,48 @@
+// libFuzzer target: the SLAM-benchmark relations reader (pgmcl::io::parse_relations) and
+// the relative-pose metric (Kuemmerle et al. 2009) on an estimate built from the input.
+// Oracles: only FormatError escapes (relations.hpp); relations hold finite numbers;
+// matched + degenerate + unmatched == relations; per-relation errors finite and >= 0.
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "fuzz_util.hpp"
+#include "pgmcl/io/errors.hpp"
+#include "pgmcl/io/relations.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace pgmcl;
+  std::vector<io::Relation> rel;
+  try {
+    rel = io::parse_relations(fuzz::as_text(data, size), "fuzz.relations");
+  } catch (const io::FormatError&) {
+    return 0;
+  } catch (const std::exception& e) {
+    fuzz::undocumented(e);
+  }
+  io::Trajectory est;
+  for (const io::Relation& r : rel) {
+    if (!std::isfinite(r.t1) || !std::isfinite(r.t2) || !std::isfinite(r.delta.x) ||
+        !std::isfinite(r.delta.y) || !std::isfinite(r.delta.theta))
+      fuzz::fail("relation with a non-finite number");
+    est.push_back({r.t1, Pose2{}});
+    est.push_back({r.t2, Pose2{}.compose(r.delta)});
+  }
+  try {
+    const io::RelationResult res = io::evaluate_relations(est, rel);
+    if (res.relations != rel.size() ||
+        res.matched + res.degenerate + res.unmatched != res.relations)
+      fuzz::fail("relation counts do not add up");
+    if (res.errors.size() != res.matched) fuzz::fail("errors.size() != matched");
+    for (const io::RelationError& e : res.errors) {
+      if (!std::isfinite(e.translation) || !std::isfinite(e.rotation) || e.translation < 0 ||
+          e.rotation < 0)
+        fuzz::fail("relation error not a finite non-negative number");
+    }
+  } catch (const std::exception& e) {
+    fuzz::undocumented(e);
+  }
+  return 0;
+}

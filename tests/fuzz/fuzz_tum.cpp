@@ -1,0 +1,71 @@
+// libFuzzer target: the TUM trajectory reader (pgmcl::io::parse_tum) and writer.
+// Oracles beyond "no crash": only FormatError escapes (tum.hpp); every pose read is finite
+// with a wrapped heading in (-pi, pi]; format_tum/parse_tum gives back the stamp and x, y
+// exactly and the heading to 1e-12 rad; the trajectory lookups stay finite.
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <numbers>
+#include <string>
+#include <string_view>
+
+#include "fuzz_util.hpp"
+#include "pgmcl/io/errors.hpp"
+#include "pgmcl/io/trajectory.hpp"
+#include "pgmcl/io/tum.hpp"
+
+namespace {
+
+using namespace pgmcl;
+
+void check_pose(const io::StampedPose& p, const char* what) {
+  if (!std::isfinite(p.stamp) || !std::isfinite(p.pose.x) || !std::isfinite(p.pose.y) ||
+      !std::isfinite(p.pose.theta))
+    fuzz::fail(what, "non-finite pose or stamp: theta " + std::to_string(p.pose.theta));
+  if (!(p.pose.theta > -std::numbers::pi && p.pose.theta <= std::numbers::pi))
+    fuzz::fail(what, "heading not wrapped to (-pi, pi]: " + std::to_string(p.pose.theta));
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  io::Trajectory t;
+  try {
+    t = io::parse_tum(fuzz::as_text(data, size), "fuzz.tum");
+  } catch (const io::FormatError&) {
+    return 0;
+  } catch (const std::exception& e) {
+    fuzz::undocumented(e);
+  }
+  std::string text;
+  try {
+    for (const io::StampedPose& p : t) {
+      check_pose(p, "parse_tum");
+      text += io::format_tum(p) + "\n";
+    }
+    const io::Trajectory back = io::parse_tum(text, "rewritten.tum");
+    if (back.size() != t.size()) fuzz::fail("round trip changed the pose count");
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      const Pose2 &a = t[i].pose, &b = back[i].pose;
+      if (back[i].stamp != t[i].stamp || a.x != b.x || a.y != b.y)
+        fuzz::fail("round trip changed a stamp or position", text);
+      if (std::abs(wrap_angle(a.theta - b.theta)) > 1e-12)
+        fuzz::fail("round trip changed a heading", std::to_string(a.theta - b.theta));
+    }
+  } catch (const std::exception& e) {
+    fuzz::undocumented(e);
+  }
+
+  io::sort_by_stamp(t);
+  if (!io::is_sorted_by_stamp(t)) fuzz::fail("sort_by_stamp left the trajectory unsorted");
+  for (const io::StampedPose& p : t) {
+    for (const double dt : {0.0, 0.25, -1e-3}) {
+      if (const auto q = io::interpolate_at(t, p.stamp + dt, 1.0))
+        check_pose({p.stamp, *q}, "interpolate_at");
+      if (const auto i = io::nearest_index(t, p.stamp + dt, 0.5); i && *i >= t.size())
+        fuzz::fail("nearest_index out of range");
+    }
+  }
+  return 0;
+}

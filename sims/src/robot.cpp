@@ -105,59 +105,49 @@ VelocityCommand WaypointFollower::turn_then_drive(const Pose2& pose, double dt) 
 }
 
 // Pure pursuit (Coulter, "Implementation of the Pure Pursuit Path Tracking Algorithm",
-// CMU-RI-TR-92-01): curvature 2 y / L^2 towards the path point L ahead of the robot's
-// projection onto the path.
+// CMU-RI-TR-92-01): curvature 2 y / L^2 towards the goal point where the circle of radius
+// L around the robot leaves the path. Progress is monotonic: a segment is done once its end
+// lies inside the circle, so sharp corners cannot trap the goal point at the robot (as a
+// goal point walked from the robot's projection onto the current segment could).
 VelocityCommand WaypointFollower::pure_pursuit(const Pose2& pose, double dt) {
-  const bool loop = plan_.loop;
-  auto projection = [&](std::size_t seg, double& u) {
-    const Point2 &a = point(seg), &b = point(seg + 1);
-    const double ex = b.x - a.x, ey = b.y - a.y, len2 = ex * ex + ey * ey;
-    u = len2 > 0.0 ? ((pose.x - a.x) * ex + (pose.y - a.y) * ey) / len2 : 1.0;
-  };
-  double u = 0.0;
-  projection(segment_, u);
-  for (std::size_t guard = 0; u >= 1.0 && guard <= last_index(); ++guard) {
-    if (!loop && segment_ + 1 >= last_index()) break;
+  const double lookahead = plan_.lookahead;
+  auto is_last = [&] { return !plan_.loop && segment_ + 1 >= last_index(); };
+  for (std::size_t guard = 0; guard <= last_index() && !is_last(); ++guard) {
+    if (dist(pose, point(segment_ + 1)) >= lookahead) break;
     ++segment_;
-    projection(segment_, u);
   }
-  const Point2& goal = point(last_index());
-  const bool final_segment = !loop && segment_ + 1 >= last_index();
-  if (final_segment && dist(pose, goal) < plan_.goal_tolerance) {
+  const Point2& end = point(segment_ + 1);
+  if (is_last() && dist(pose, end) < plan_.goal_tolerance) {
     finished_ = true;
     return {};
   }
-  // Walk `lookahead` metres along the path from the projection point.
-  const Point2 &a0 = point(segment_), &b0 = point(segment_ + 1);
-  const double uc = std::clamp(u, 0.0, 1.0);
-  Point2 q{a0.x + uc * (b0.x - a0.x), a0.y + uc * (b0.y - a0.y)};
-  double remaining = plan_.lookahead;
-  std::size_t seg = segment_;
-  Point2 target = point(seg + 1);
-  for (std::size_t guard = 0; guard <= last_index() + 1; ++guard) {
-    const Point2& b = point(seg + 1);
-    const double d = std::hypot(b.x - q.x, b.y - q.y);
-    if (d >= remaining) {
-      target = {q.x + remaining / d * (b.x - q.x), q.y + remaining / d * (b.y - q.y)};
-      break;
+  Point2 target = end;
+  if (dist(pose, end) >= lookahead) {
+    // Farther intersection of the circle with segment a-b: |a + u (b - a) - p| = L.
+    const Point2& a = point(segment_);
+    const double ex = end.x - a.x, ey = end.y - a.y, fx = a.x - pose.x, fy = a.y - pose.y;
+    const double qa = ex * ex + ey * ey, qb = 2.0 * (fx * ex + fy * ey);
+    const double qc = fx * fx + fy * fy - lookahead * lookahead;
+    const double disc = qb * qb - 4.0 * qa * qc;
+    double u = 1.0;
+    if (qa > 0.0 && disc >= 0.0) {
+      u = std::clamp((-qb + std::sqrt(disc)) / (2.0 * qa), 0.0, 1.0);
+    } else if (qa > 0.0) {  // off the path by more than L: head for the nearest point
+      u = std::clamp(-(fx * ex + fy * ey) / qa, 0.0, 1.0);
     }
-    target = b;
-    if (!loop && seg + 1 >= last_index()) break;
-    remaining -= d;
-    q = b;
-    ++seg;
+    target = {a.x + u * ex, a.y + u * ey};
   }
   const double c = std::cos(pose.theta), s = std::sin(pose.theta);
   const double tx = c * (target.x - pose.x) + s * (target.y - pose.y);
   const double ty = -s * (target.x - pose.x) + c * (target.y - pose.y);
   const double l2 = tx * tx + ty * ty;
   if (l2 < 1e-12) return {};
-  if (tx <= 0.0) {  // target behind: turn on the spot first
+  if (tx <= 0.0) {  // goal point behind: turn on the spot first
     return {0.0, std::copysign(limits_.max_omega, ty)};
   }
   const double kappa = 2.0 * ty / l2;
   double v = limits_.max_v;
-  if (final_segment) v = std::min(v, dist(pose, goal) / dt);
+  if (is_last()) v = std::min(v, dist(pose, end) / dt);
   if (std::abs(kappa) * v > limits_.max_omega) v = limits_.max_omega / std::abs(kappa);
   return {v, kappa * v};
 }

@@ -69,6 +69,26 @@ TEST(WaypointFollowing, PurePursuitTracksThePathAndStopsAtTheGoal) {
   EXPECT_NEAR(m.back().truth.y, 4.0, sc.waypoints.goal_tolerance);
 }
 
+TEST(WaypointFollowing, LoopingPurePursuitKeepsCirculating) {
+  const auto grid = test::square_room(100, 100, 0.05);
+  Scenario sc = path_scenario(Controller::kPurePursuit);
+  sc.waypoints.loop = true;
+  sc.duration = 60.0;  // the loop closes from the last waypoint back to the first:
+  const auto m = simulate_motion(sc, grid);  // a triangle with a 135 deg corner at (1, 4)
+  const std::vector<Point2> pts = {{1, 1}, {4, 1}, {4, 4}, {1, 4}, {4, 1}};
+  double worst = 0.0, late = 0.0;
+  for (std::size_t i = 1; i < m.size(); ++i) {
+    const Point2 p{m[i].truth.x, m[i].truth.y};
+    double d = 1e9;
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k)
+      d = std::min(d, seg_dist(p, pts[k], pts[k + 1]));
+    worst = std::max(worst, d);
+    if (m[i].stamp > 50.0) late += std::hypot(p.x - m[i - 1].truth.x, p.y - m[i - 1].truth.y);
+  }
+  EXPECT_LT(worst, 0.5 * sc.waypoints.lookahead);
+  EXPECT_GT(late, 4.0);  // still driving (near 0.5 m/s) in the last 10 s
+}
+
 TEST(WaypointFollowing, TurnThenDriveVisitsEveryWaypointOnStraightLegs) {
   const auto grid = test::square_room(100, 100, 0.05);
   const Scenario sc = path_scenario(Controller::kTurnThenDrive);

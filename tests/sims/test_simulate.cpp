@@ -94,8 +94,11 @@ TEST(Simulate, MovingObstaclesOccludeBeamsButAreNotInTheMap) {
   sc.scan_rate = 1.0;
   // A disc crossing the x axis of the robot at x = 3, 0.5 m/s, from y = 1.5 to 3.5 and back.
   sc.discs.push_back({0.2, {{{3.0, 1.5}, {3.0, 3.5}}, 0.5, 0.0}, "average"});
+  // A static box straight to the left: its lower face at y = 3.8 m, 1.3 m from the robot.
+  sc.boxes.push_back({0.4, 0.2, 0.0, {{{1.0, 4.0}}, 0.0, 0.0}, "white_paper"});
   const auto log = simulate(sc, grid);
-  const std::size_t centre = 540;  // the beam along +x
+  EXPECT_NEAR(log.records[1].scan.ranges[900], 1.3, 1e-4);  // bearing +90 deg
+  const std::size_t centre = 540;                           // the beam along +x
   // t = 2 s: the disc is centred on the beam, 2 m ahead: 1.8 m to its surface.
   EXPECT_NEAR(log.records[2].scan.ranges[centre], 1.8, 1e-4);
   // t = 0 s: it is 1 m to the side; the beam reaches the wall at x = 4.95.

@@ -1,0 +1,63 @@
+#pragma once
+/// What one Localizer::update() did: the estimate plus diagnostics.
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
+
+#include "pgmcl/maps/se2.hpp"
+
+namespace pgmcl {
+
+/// Why the measurement update (or the whole update) was skipped.
+enum class SkipReason : std::uint8_t {
+  kNone,               ///< full update: motion, measurement, (maybe) resampling
+  kNotMoved,           ///< odometry moved less than gating.d_min / theta_min: nothing ran
+  kNoValidBeams,       ///< motion ran, but no reading was valid: weights untouched
+  kTimeWentBackwards,  ///< TimeBackwardsPolicy::kReset: odometry reference dropped
+};
+
+[[nodiscard]] const char* to_string(SkipReason reason) noexcept;
+
+/// Wall-clock durations (std::chrono::steady_clock), milliseconds.
+struct UpdateTimings {
+  double motion_ms = 0.0;
+  double measurement_ms = 0.0;  ///< beam preparation + scoring + normalisation
+  double resample_ms = 0.0;     ///< KLD sizing + resampling + random injection
+  double estimate_ms = 0.0;     ///< mean, covariance, clustering
+  double total_ms = 0.0;
+};
+
+struct UpdateResult {
+  /// Best hypothesis in the global frame: the weighted mean of the heaviest cluster.
+  /// On skipped updates, the last estimate moved by the odometry since (dead reckoning).
+  Pose2 estimate{};
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< of `estimate`; x, y, theta; global
+  Pose2 mean{};                                          ///< weighted mean of all particles
+  Eigen::Matrix3d mean_covariance = Eigen::Matrix3d::Zero();  ///< of `mean`, global frame
+  double cluster_weight = 0.0;  ///< weight of the heaviest cluster, in [0, 1]
+  std::size_t clusters = 0;     ///< number of clusters found
+  bool converged = false;       ///< criterion in EstimateConfig
+
+  SkipReason skipped = SkipReason::kNone;
+  bool motion_applied = false;
+  bool measured = false;  ///< the weights were updated from this scan
+  bool resampled = false;
+  double n_eff = 0.0;         ///< 1 / sum w^2 after the measurement update, before resampling
+  double tempering = 0.0;     ///< exponent tau used for this scan (0 when not measured)
+  std::size_t particles = 0;  ///< particle count after this update (KLD may change it)
+  std::size_t injected = 0;   ///< particles redrawn over free space (augmented MCL)
+  double w_slow = 0.0;        ///< augmented MCL long-term average (per-beam likelihood)
+  double w_fast = 0.0;        ///< augmented MCL short-term average
+
+  std::size_t beams_total = 0;    ///< readings in the scan
+  std::size_t beams_invalid = 0;  ///< NaN/Inf/out-of-range readings (beam_selection.hpp)
+  std::size_t beams_used = 0;     ///< readings scored per particle after selection
+  /// Of the used beams, those whose endpoint seen from `estimate` reads the table's
+  /// background (beyond the kernel's reach or off the map): no table work was done there.
+  std::size_t beams_background = 0;
+
+  UpdateTimings timings{};
+};
+
+}  // namespace pgmcl

@@ -1,0 +1,146 @@
+// Localizer: construction and (re-)initialisation of the particle set.
+#include "pgmcl/mcl/localizer.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "stream_keys.hpp"
+
+namespace pgmcl {
+namespace {
+
+std::shared_ptr<const maps::LikelihoodField> build_field(const maps::OccupancyGrid& grid,
+                                                         const LocalizerConfig& cfg) {
+  cfg.validate();  // before the (possibly expensive) table build
+  return std::make_shared<const maps::LikelihoodField>(grid, cfg.likelihood.beam,
+                                                       cfg.likelihood.table);
+}
+
+bool finite(const Pose2& p) noexcept {
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta);
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> free_cell_indices(const maps::OccupancyGrid& grid) {
+  if (grid.size() > std::numeric_limits<std::uint32_t>::max())
+    throw std::invalid_argument("free_cell_indices: grid has more than 2^32 cells");
+  std::vector<std::uint32_t> out;
+  for (int row = 0; row < grid.height(); ++row)
+    for (int col = 0; col < grid.width(); ++col)
+      if (grid.free(col, row)) out.push_back(static_cast<std::uint32_t>(grid.index(col, row)));
+  return out;
+}
+
+Localizer::Localizer(const maps::OccupancyGrid& grid, const LocalizerConfig& cfg)
+    : Localizer(build_field(grid, cfg), free_cell_indices(grid), cfg) {}
+
+Localizer::Localizer(std::shared_ptr<const maps::LikelihoodField> field,
+                     std::vector<std::uint32_t> free_cells, const LocalizerConfig& cfg)
+    : cfg_(cfg), field_(std::move(field)), model_(field_), free_cells_(std::move(free_cells)) {
+  cfg_.validate();
+  init_geometry();
+  global_localize();
+}
+
+void Localizer::init_geometry() {
+  origin_ = field_->origin();
+  resolution_ = field_->resolution();
+  width_ = field_->width();
+  if (free_cells_.empty())
+    throw std::invalid_argument("Localizer: the map has no free cells to put particles in");
+  const auto cells =
+      static_cast<std::uint64_t>(field_->width()) * static_cast<std::uint64_t>(field_->height());
+  for (std::uint32_t c : free_cells_)
+    if (c >= cells)
+      throw std::invalid_argument("Localizer: free cell index " + std::to_string(c) +
+                                  " is outside the " + std::to_string(field_->width()) + " x " +
+                                  std::to_string(field_->height()) + " grid");
+  clusterer_ =
+      ParticleClusterer(ClusterConfig{cfg_.estimate.cluster_xy, cfg_.estimate.cluster_theta});
+  const KldConfig& kc = cfg_.filter.kld;
+  if (kc.enabled) {
+    binner_ = KldBinner(kc.bin_xy, kc.bin_xy, kc.bin_theta);
+    binner_.reserve(kc.max_particles);
+    kld_z_ = normal_quantile(1.0 - kc.delta);
+  }
+}
+
+Pose2 Localizer::random_free_pose(Rng& rng) const noexcept {
+  const std::uint32_t cell = free_cells_[rng.below(free_cells_.size())];
+  const auto w = static_cast<std::uint32_t>(width_);
+  const double col = static_cast<double>(cell % w) + rng.uniform();
+  const double row = static_cast<double>(cell / w) + rng.uniform();
+  const double theta = wrap_angle(rng.uniform(-std::numbers::pi, std::numbers::pi));
+  return {col * resolution_, row * resolution_, theta};
+}
+
+void Localizer::global_localize() {
+  const std::size_t n = cfg_.filter.global_particles;
+  p_.resize(n);
+  Rng rng = Rng::for_block(cfg_.seed, next_step(), detail::kStreamInit);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Pose2 q = random_free_pose(rng);
+    p_.x[i] = static_cast<float>(q.x);
+    p_.y[i] = static_cast<float>(q.y);
+    p_.theta[i] = wrap_angle(static_cast<float>(q.theta));
+  }
+  reset_after_init();
+}
+
+void Localizer::set_pose(const Pose2& mean, const Eigen::Matrix3d& cov) {
+  if (!finite(mean)) throw std::invalid_argument("Localizer::set_pose: mean is not finite");
+  if (!cov.allFinite())
+    throw std::invalid_argument("Localizer::set_pose: covariance is not finite");
+  const double scale = std::max(1.0, cov.cwiseAbs().maxCoeff());
+  if ((cov - cov.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale)
+    throw std::invalid_argument("Localizer::set_pose: covariance is not symmetric");
+  // Rotate the covariance into the map-local frame: J = diag(R(-origin.theta), 1).
+  const double c = std::cos(origin_.theta), s = std::sin(origin_.theta);
+  Eigen::Matrix3d j = Eigen::Matrix3d::Identity();
+  j.topLeftCorner<2, 2>() << c, s, -s, c;
+  const Eigen::Matrix3d local_cov = j * cov * j.transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(local_cov);
+  if (eig.eigenvalues().minCoeff() < -1e-12 * scale)
+    throw std::invalid_argument("Localizer::set_pose: covariance is not positive semidefinite");
+  // Square root via the eigen-decomposition: also fine for singular (e.g. heading-only)
+  // covariances, where a Cholesky factorisation would fail.
+  const Eigen::Matrix3d sqrt_cov =
+      eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal();
+  const Pose2 m = origin_.between(mean);
+
+  const std::size_t n = cfg_.filter.particles;
+  p_.resize(n);
+  Rng rng = Rng::for_block(cfg_.seed, next_step(), detail::kStreamInit);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d z(rng.normal(), rng.normal(), rng.normal());
+    const Eigen::Vector3d d = sqrt_cov * z;
+    p_.x[i] = static_cast<float>(m.x + d.x());
+    p_.y[i] = static_cast<float>(m.y + d.y());
+    p_.theta[i] = wrap_angle(static_cast<float>(wrap_angle(m.theta + d.z())));
+  }
+  reset_after_init();
+}
+
+void Localizer::reset_after_init() {
+  p_.set_uniform_weights();
+  force_ = true;
+  have_averages_ = false;
+  UpdateResult r;
+  r.particles = p_.size();
+  r.n_eff = static_cast<double>(p_.size());
+  compute_estimate(r);
+  anchor_ = r.estimate;
+  last_ = r;
+}
+
+ParticlesView Localizer::particles() const noexcept {
+  return ParticlesView{p_.x, p_.y, p_.theta, p_.w, origin_};
+}
+
+}  // namespace pgmcl

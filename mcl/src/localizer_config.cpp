@@ -1,0 +1,100 @@
+#include "pgmcl/mcl/localizer_config.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "pgmcl/mcl/update_result.hpp"
+
+namespace pgmcl {
+namespace {
+
+[[noreturn]] void fail(const std::string& field, const std::string& why) {
+  throw std::invalid_argument("LocalizerConfig: " + field + " " + why);
+}
+void require_finite_nonneg(double v, const char* field) {
+  if (!std::isfinite(v) || v < 0.0)
+    fail(field, "must be finite and >= 0 (got " + std::to_string(v) + ")");
+}
+void require_positive(double v, const char* field) {
+  if (!std::isfinite(v) || v <= 0.0)
+    fail(field, "must be finite and > 0 (got " + std::to_string(v) + ")");
+}
+
+}  // namespace
+
+void LocalizerConfig::validate() const {
+  const MotionNoise& n = motion.noise;
+  require_finite_nonneg(n.a1, "motion.noise.a1");
+  require_finite_nonneg(n.a2, "motion.noise.a2");
+  require_finite_nonneg(n.a3, "motion.noise.a3");
+  require_finite_nonneg(n.a4, "motion.noise.a4");
+  require_finite_nonneg(n.a5, "motion.noise.a5");
+
+  const LikelihoodConfig& l = likelihood;
+  require_positive(l.beam.sigma_along, "likelihood.beam.sigma_along");
+  require_positive(l.beam.sigma_across, "likelihood.beam.sigma_across");
+  require_finite_nonneg(l.beam.model_mismatch, "likelihood.beam.model_mismatch");
+  require_positive(l.beam.max_range, "likelihood.beam.max_range");
+  if (!std::isfinite(l.effective_beams)) fail("likelihood.effective_beams", "must be finite");
+  if (l.effective_beams <= 0.0 && !(l.tempering > 0.0 && l.tempering <= 1.0))
+    fail("likelihood.tempering", "must be in (0, 1] (got " + std::to_string(l.tempering) + ")");
+  if (!(l.min_ess_ratio >= 0.0 && l.min_ess_ratio < 1.0))
+    fail("likelihood.min_ess_ratio", "must be in [0, 1)");
+  if (l.selection.mode == BeamSelectionMode::kStride && l.selection.stride < 1)
+    fail("likelihood.selection.stride", "must be >= 1");
+  if (l.selection.mode == BeamSelectionMode::kMaxBeams && l.selection.max_beams < 1)
+    fail("likelihood.selection.max_beams", "must be >= 1");
+
+  const FilterConfig& f = filter;
+  if (f.particles < 1) fail("filter.particles", "must be >= 1");
+  if (f.global_particles < 1) fail("filter.global_particles", "must be >= 1");
+  if (!(f.resample_threshold >= 0.0 && f.resample_threshold <= 1.0))
+    fail("filter.resample_threshold",
+         "must be in [0, 1] (got " + std::to_string(f.resample_threshold) + ")");
+  if (f.kld.enabled) {
+    if (f.kld.min_particles < 1) fail("filter.kld.min_particles", "must be >= 1");
+    if (f.kld.max_particles < f.kld.min_particles)
+      fail("filter.kld.max_particles", "must be >= filter.kld.min_particles");
+    if (!(f.kld.epsilon > 0.0 && std::isfinite(f.kld.epsilon)))
+      fail("filter.kld.epsilon", "must be finite and > 0");
+    if (!(f.kld.delta > 0.0 && f.kld.delta < 1.0)) fail("filter.kld.delta", "must be in (0, 1)");
+    require_positive(f.kld.bin_xy, "filter.kld.bin_xy");
+    require_positive(f.kld.bin_theta, "filter.kld.bin_theta");
+  }
+  if (f.recovery.enabled) {
+    if (!(f.recovery.alpha_slow > 0.0 && f.recovery.alpha_slow < 1.0))
+      fail("filter.recovery.alpha_slow", "must be in (0, 1)");
+    if (!(f.recovery.alpha_fast > f.recovery.alpha_slow && f.recovery.alpha_fast <= 1.0))
+      fail("filter.recovery.alpha_fast", "must be in (alpha_slow, 1]");
+  }
+
+  require_finite_nonneg(gating.d_min, "gating.d_min");
+  require_finite_nonneg(gating.theta_min, "gating.theta_min");
+
+  const EstimateConfig& e = estimate;
+  require_positive(e.cluster_xy, "estimate.cluster_xy");
+  require_positive(e.cluster_theta, "estimate.cluster_theta");
+  if (!(e.converged_weight > 0.0 && e.converged_weight <= 1.0))
+    fail("estimate.converged_weight", "must be in (0, 1]");
+  require_positive(e.converged_xy_std, "estimate.converged_xy_std");
+  require_positive(e.converged_theta_std, "estimate.converged_theta_std");
+
+  if (threads < 0) fail("threads", "must be >= 0 (0 = OpenMP default)");
+}
+
+const char* to_string(SkipReason reason) noexcept {
+  switch (reason) {
+    case SkipReason::kNone:
+      return "none";
+    case SkipReason::kNotMoved:
+      return "not_moved";
+    case SkipReason::kNoValidBeams:
+      return "no_valid_beams";
+    case SkipReason::kTimeWentBackwards:
+      return "time_went_backwards";
+  }
+  return "unknown";
+}
+
+}  // namespace pgmcl

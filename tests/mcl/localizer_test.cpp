@@ -1,0 +1,241 @@
+// Localizer: closed-loop tracking, KLD, gating, selective resampling, set_pose, config.
+#include "pgmcl/mcl/localizer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "closed_loop.hpp"
+#include "synthetic_world.hpp"
+
+namespace pgmcl {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+Eigen::Matrix3d diag_cov(double sxy, double sth) {
+  Eigen::Matrix3d c = Eigen::Matrix3d::Zero();
+  c.diagonal() << sxy * sxy, sxy * sxy, sth * sth;
+  return c;
+}
+
+bool is_psd_symmetric(const Eigen::Matrix3d& c) {
+  if (!c.allFinite() || (c - c.transpose()).cwiseAbs().maxCoeff() > 1e-12) return false;
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(c).eigenvalues().minCoeff() >= -1e-12;
+}
+
+struct Scenario {
+  test::World world = test::make_room(0.05);
+  std::vector<Pose2> truth = test::loop_trajectory();
+  std::vector<Pose2> odom = test::noisy_odometry(truth, MotionNoise{}, 11);
+  test::ScanSpec spec = [] {
+    test::ScanSpec s;
+    s.noise_sigma = 0.01;
+    return s;
+  }();
+};
+
+TEST(Localizer, TracksTheLoopWithinBounds) {
+  Scenario sc;
+  LocalizerConfig cfg;
+  Localizer loc(sc.world.grid, cfg);
+  loc.set_pose(sc.truth[0], diag_cov(0.1, 5 * kDeg));
+  const test::LoopErrors e =
+      test::run_loop(loc, sc.world, sc.truth, sc.odom, sc.spec, 21, 0, sc.truth.size(), 5);
+  // Seen: RMSE ~0.0xx m, max ~0.0xx m, max heading ~x deg over ~250 steps.
+  EXPECT_LT(e.rmse_xy, 0.05);
+  EXPECT_LT(e.max_xy, 0.15);
+  EXPECT_LT(e.max_theta, 3 * kDeg);
+  EXPECT_NE(e.first_converged, static_cast<std::size_t>(-1));
+  const UpdateResult& r = loc.last_result();
+  EXPECT_TRUE(r.converged);
+  EXPECT_TRUE(is_psd_symmetric(r.covariance));
+  EXPECT_TRUE(is_psd_symmetric(r.mean_covariance));
+  // KLD: fewer particles once converged than the 2000 set_pose started with.
+  EXPECT_LT(e.last_particles, cfg.filter.particles);
+  EXPECT_GE(e.min_particles, cfg.filter.kld.min_particles);
+}
+
+TEST(Localizer, FixedParticleCountWithoutKld) {
+  Scenario sc;
+  LocalizerConfig cfg;
+  cfg.filter.kld.enabled = false;
+  cfg.filter.particles = 700;
+  Localizer loc(sc.world.grid, cfg);
+  loc.set_pose(sc.truth[0], diag_cov(0.1, 5 * kDeg));
+  const test::LoopErrors e =
+      test::run_loop(loc, sc.world, sc.truth, sc.odom, sc.spec, 21, 0, 80, 5);
+  EXPECT_EQ(e.min_particles, 700u);
+  EXPECT_EQ(e.last_particles, 700u);
+  EXPECT_LT(e.rmse_xy, 0.05);
+}
+
+TEST(Localizer, GatingSkipsUntilMovedOrForced) {
+  Scenario sc;
+  LocalizerConfig cfg;
+  cfg.gating.d_min = 0.2;
+  cfg.gating.theta_min = 0.2;
+  Localizer loc(sc.world.grid, cfg);
+  loc.set_pose(sc.truth[0], diag_cov(0.05, 2 * kDeg));
+  const LaserScan scan = sc.world.scan(sc.truth[0], sc.spec);
+  const Pose2 odom0{1.0, 2.0, 0.5};
+  UpdateResult r = loc.update(odom0, scan, 0.0);
+  EXPECT_EQ(r.skipped, SkipReason::kNone);  // the first update always measures
+  EXPECT_TRUE(r.measured);
+  const Pose2 est0 = r.estimate;
+  // 10 cm forward in the odometry frame: below d_min -> skipped, dead-reckoned estimate.
+  const Pose2 odom1 = odom0.compose({0.1, 0.0, 0.0});
+  r = loc.update(odom1, scan, 0.1);
+  EXPECT_EQ(r.skipped, SkipReason::kNotMoved);
+  EXPECT_FALSE(r.measured);
+  EXPECT_FALSE(r.motion_applied);
+  const Pose2 expect = est0.compose({0.1, 0.0, 0.0});
+  EXPECT_NEAR(r.estimate.x, expect.x, 1e-12);
+  EXPECT_NEAR(r.estimate.y, expect.y, 1e-12);
+  EXPECT_NEAR(r.estimate.theta, expect.theta, 1e-12);
+  // force_update() overrides the gate once.
+  loc.force_update();
+  r = loc.update(odom1, scan, 0.2);
+  EXPECT_EQ(r.skipped, SkipReason::kNone);
+  EXPECT_TRUE(r.measured && r.motion_applied);
+  r = loc.update(odom1, scan, 0.3);
+  EXPECT_EQ(r.skipped, SkipReason::kNotMoved);
+  // Rotation beyond theta_min passes the gate.
+  r = loc.update(odom1.compose({0.0, 0.0, 0.25}), scan, 0.4);
+  EXPECT_EQ(r.skipped, SkipReason::kNone);
+  // With gating disabled every update measures.
+  cfg.gating.enabled = false;
+  Localizer ungated(sc.world.grid, cfg);
+  ungated.update(odom0, scan, 0.0);
+  EXPECT_TRUE(ungated.update(odom0, scan, 0.1).measured);
+}
+
+TEST(Localizer, SelectiveResamplingFollowsTheThreshold) {
+  Scenario sc;
+  LocalizerConfig cfg;
+  cfg.filter.recovery.enabled = false;  // no injection-driven resampling
+  cfg.filter.resample_threshold = 0.0;  // never
+  Localizer never(sc.world.grid, cfg);
+  never.set_pose(sc.truth[0], diag_cov(0.1, 5 * kDeg));
+  cfg.filter.resample_threshold = 1.0;  // every update (N_eff < N unless weights are equal)
+  Localizer always(sc.world.grid, cfg);
+  always.set_pose(sc.truth[0], diag_cov(0.1, 5 * kDeg));
+  for (std::size_t k = 0; k < 10; ++k) {
+    const LaserScan scan = sc.world.scan(sc.truth[k], sc.spec);
+    const double t = static_cast<double>(k);
+    EXPECT_FALSE(never.update(sc.odom[k], scan, t).resampled);
+    const UpdateResult r = always.update(sc.odom[k], scan, t);
+    EXPECT_EQ(r.resampled, r.measured);
+    EXPECT_LT(r.n_eff, static_cast<double>(r.particles) + 1e-9);
+  }
+}
+
+// set_pose samples the requested Gaussian: mean and covariance in the global frame, also
+// with a rotated map origin (the covariance is rotated into the grid frame and back).
+TEST(Localizer, SetPoseSamplesTheRequestedGaussian) {
+  const test::World world = test::make_room(0.05, Pose2{100.0, -50.0, 0.6});
+  LocalizerConfig cfg;
+  cfg.filter.particles = 20000;
+  Localizer loc(world.grid, cfg);
+  Eigen::Matrix3d cov;
+  cov << 0.04, 0.015, 0.0, 0.015, 0.01, 0.002, 0.0, 0.002, 0.02;
+  const Pose2 mean{104.0, -45.0, 3.1};  // heading near pi: samples wrap around
+  loc.set_pose(mean, cov);
+  const ParticlesView pv = loc.particles();
+  ASSERT_EQ(pv.size(), 20000u);
+  Eigen::Vector3d m = Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector3d> d(pv.size());
+  for (std::size_t i = 0; i < pv.size(); ++i) {
+    const Pose2 g = pv.global_pose(i);
+    ASSERT_GT(g.theta, -std::numbers::pi);
+    ASSERT_LE(g.theta, std::numbers::pi);
+    d[i] = Eigen::Vector3d(g.x - mean.x, g.y - mean.y, wrap_angle(g.theta - mean.theta));
+    m += d[i];
+  }
+  m /= static_cast<double>(pv.size());
+  Eigen::Matrix3d c = Eigen::Matrix3d::Zero();
+  for (const auto& v : d) c += (v - m) * (v - m).transpose();
+  c /= static_cast<double>(pv.size() - 1);
+  // 20000 samples: standard errors ~1 % of each sigma.
+  EXPECT_LT(m.cwiseAbs().maxCoeff(), 0.005);
+  EXPECT_LT((c - cov).cwiseAbs().maxCoeff(), 0.0015);
+  // The localizer's own estimate agrees.
+  const UpdateResult& r = loc.last_result();
+  EXPECT_NEAR(r.mean.x, mean.x, 0.01);
+  EXPECT_NEAR(r.mean.y, mean.y, 0.01);
+  EXPECT_NEAR(wrap_angle(r.mean.theta - mean.theta), 0.0, 0.01);
+  EXPECT_LT((r.mean_covariance - cov).cwiseAbs().maxCoeff(), 0.002);
+}
+
+TEST(Localizer, SetPoseRejectsBadCovariance) {
+  const test::World world = test::make_room(0.1);
+  Localizer loc(world.grid, LocalizerConfig{});
+  Eigen::Matrix3d asym = diag_cov(0.1, 0.1);
+  asym(0, 1) = 0.001;
+  EXPECT_THROW(loc.set_pose({2, 2, 0}, asym), std::invalid_argument);
+  Eigen::Matrix3d neg = diag_cov(0.1, 0.1);
+  neg(2, 2) = -0.01;
+  EXPECT_THROW(loc.set_pose({2, 2, 0}, neg), std::invalid_argument);
+  EXPECT_THROW(loc.set_pose({std::nan(""), 2, 0}, diag_cov(0.1, 0.1)), std::invalid_argument);
+  // A singular (heading-only) covariance is fine.
+  Eigen::Matrix3d heading_only = Eigen::Matrix3d::Zero();
+  heading_only(2, 2) = 0.1;
+  EXPECT_NO_THROW(loc.set_pose({2, 2, 0}, heading_only));
+  EXPECT_FLOAT_EQ(loc.particles().x[0], loc.particles().x[1]);
+}
+
+void expect_invalid(const LocalizerConfig& cfg, const std::string& field) {
+  try {
+    cfg.validate();
+    ADD_FAILURE() << "no exception for " << field;
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+  }
+}
+
+TEST(LocalizerConfig, ValidateNamesTheField) {
+  EXPECT_NO_THROW(LocalizerConfig{}.validate());
+  LocalizerConfig c;
+  c.motion.noise.a3 = -1.0;
+  expect_invalid(c, "motion.noise.a3");
+  c = {};
+  c.filter.kld.max_particles = 10;
+  expect_invalid(c, "filter.kld.max_particles");
+  c = {};
+  c.filter.kld.delta = 1.0;
+  expect_invalid(c, "filter.kld.delta");
+  c = {};
+  c.filter.recovery.alpha_fast = 0.0005;
+  expect_invalid(c, "filter.recovery.alpha_fast");
+  c = {};
+  c.filter.resample_threshold = 1.5;
+  expect_invalid(c, "filter.resample_threshold");
+  c = {};
+  c.likelihood.effective_beams = 0.0;
+  c.likelihood.tempering = 0.0;
+  expect_invalid(c, "likelihood.tempering");
+  c = {};
+  c.likelihood.beam.sigma_along = 0.0;
+  expect_invalid(c, "likelihood.beam.sigma_along");
+  c = {};
+  c.gating.d_min = std::nan("");
+  expect_invalid(c, "gating.d_min");
+  c = {};
+  c.estimate.converged_weight = 0.0;
+  expect_invalid(c, "estimate.converged_weight");
+  c = {};
+  c.threads = -2;
+  expect_invalid(c, "threads");
+  // The constructor validates too.
+  const test::World world = test::make_room(0.1);
+  c = {};
+  c.filter.particles = 0;
+  EXPECT_THROW(Localizer(world.grid, c), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace pgmcl

@@ -1,0 +1,88 @@
+// Recovery: global localisation from several starts and the kidnapped robot (augmented
+// MCL, Probabilistic Robotics Table 8.3).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "closed_loop.hpp"
+#include "pgmcl/mcl/localizer.hpp"
+#include "synthetic_world.hpp"
+
+namespace pgmcl {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+LocalizerConfig global_config() {
+  LocalizerConfig cfg;
+  cfg.threads = 2;
+  return cfg;
+}
+
+class GlobalLocalisation : public ::testing::TestWithParam<std::size_t> {};
+
+// From a uniform start over the free space, the filter converges onto the true pose
+// within a bounded number of updates, whichever part of the loop the robot starts on.
+TEST_P(GlobalLocalisation, ConvergesFromAnywhere) {
+  const std::size_t start = GetParam();
+  const test::World world = test::make_room(0.05);
+  const auto truth = test::loop_trajectory();
+  const auto odom = test::noisy_odometry(truth, MotionNoise{}, 100 + start);
+  test::ScanSpec spec;
+  spec.noise_sigma = 0.01;
+  Localizer loc(world.grid, global_config());  // starts uniform (global_localize)
+  ASSERT_EQ(loc.particles().size(), loc.config().filter.global_particles);
+  constexpr std::size_t kBudget = 40;  // updates
+  const test::LoopErrors e =
+      test::run_loop(loc, world, truth, odom, spec, 7 + start, start, start + kBudget);
+  // Seen: converged after ~x updates from each start; final error ~x cm.
+  ASSERT_NE(e.first_converged, static_cast<std::size_t>(-1)) << "never converged";
+  EXPECT_LT(e.first_converged - start, 25u);
+  EXPECT_LT(e.final_xy, 0.1);
+  EXPECT_LT(e.final_theta, 3 * kDeg);
+  // KLD shrank the 20000-particle global set once the posterior was compact.
+  EXPECT_LT(e.last_particles, 5000u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Starts, GlobalLocalisation, ::testing::Values(0, 60, 110, 170));
+
+// The robot is carried to another place without odometry noticing; the filter, confident
+// at the old place, must notice (w_fast drops below w_slow), inject random particles and
+// re-converge on the new place.
+TEST(Kidnapping, RecoversAfterBeingCarriedAway) {
+  const test::World world = test::make_room(0.05);
+  const auto truth = test::loop_trajectory();
+  const auto odom = test::noisy_odometry(truth, MotionNoise{}, 17);
+  test::ScanSpec spec;
+  spec.noise_sigma = 0.01;
+  Localizer loc(world.grid, global_config());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  cov.diagonal() << 0.01, 0.01, 0.003;
+  loc.set_pose(truth[0], cov);
+  test::LoopErrors before = test::run_loop(loc, world, truth, odom, spec, 1, 0, 40);
+  ASSERT_LT(before.final_xy, 0.1);
+  ASSERT_TRUE(loc.last_result().converged);
+
+  // Kidnap: truth jumps from step 40 to step 150 (several metres, other heading), while
+  // odometry continues from where it was as if the robot had driven on normally.
+  std::vector<Pose2> truth2(truth.begin(), truth.begin() + 40);
+  std::vector<Pose2> odom2(odom.begin(), odom.begin() + 40);
+  for (std::size_t k = 150; k < truth.size(); ++k) {
+    truth2.push_back(truth[k]);
+    odom2.push_back(odom2.back().compose(odom[k - 1].between(odom[k])));
+  }
+  ASSERT_GT(test::xy_error(truth2[39], truth2[40]), 3.0);
+  const test::LoopErrors after =
+      test::run_loop(loc, world, truth2, odom2, spec, 2, 40, truth2.size(), 0, 100.0);
+  // Seen: injection starts within a few updates, back within x cm after ~x updates.
+  std::size_t recovered_at = 0;
+  for (std::size_t k = 0; k < after.err_xy.size(); ++k)
+    if (after.err_xy[k] > 0.1) recovered_at = k + 1;
+  EXPECT_LT(recovered_at, 60u) << "still lost at update " << recovered_at;
+  EXPECT_LT(after.final_xy, 0.1);
+  EXPECT_LT(after.final_theta, 3 * kDeg);
+}
+
+}  // namespace
+}  // namespace pgmcl

@@ -1,2 +1,57 @@
-#include <cstdio>
-int main() { std::puts("pgmcl: under construction"); return 0; }
+/// pgmcl: the command-line front end. Every failure ends as one "pgmcl: error: ..." line on
+/// stderr and a non-zero exit code (2 usage, 1 input/runtime, 3 not available yet).
+
+#include <CLI/CLI.hpp>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "pgmcl/io/cli_errors.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "pgmcl: Monte Carlo localisation with the planar Gaussian beam model "
+      "(Dekan et al.)",
+      "pgmcl"};
+  app.set_version_flag("--version", PGMCL_VERSION);
+  app.require_subcommand(1);
+  app.fallthrough(false);
+  const std::vector<pgmcl::app::Command> commands = {
+      pgmcl::app::add_localize_command(app), pgmcl::app::add_run_command(app),
+      pgmcl::app::add_simulate_command(app), pgmcl::app::add_map_command(app),
+      pgmcl::app::add_perturb_command(app),  pgmcl::app::add_eval_command(app),
+      pgmcl::app::add_kernel_command(app),   pgmcl::app::add_calibrate_command(app),
+  };
+  return pgmcl::io::run_reporting_errors(
+      [&]() -> int {
+        try {
+          app.parse(argc, argv);
+        } catch (const CLI::CallForHelp& e) {
+          return app.exit(e);
+        } catch (const CLI::CallForAllHelp& e) {
+          return app.exit(e);
+        } catch (const CLI::CallForVersion& e) {
+          return app.exit(e);
+        } catch (const CLI::ParseError& e) {
+          // CLI11 reports an unknown command as "A subcommand is required"; name it instead.
+          bool known = false;
+          for (const auto& c : commands) known = known || (argc > 1 && c.sub->check_name(argv[1]));
+          if (argc > 1 && argv[1][0] != '-' && !known) {
+            std::string names;
+            for (const auto& c : commands) names += (names.empty() ? "" : ", ") + c.sub->get_name();
+            std::cerr << "pgmcl: error: unknown command '" << argv[1] << "' (commands: " << names
+                      << ")\n";
+            return pgmcl::io::kExitUsage;
+          }
+          std::cerr << "pgmcl: error: " << e.what() << "\n"
+                    << "Run 'pgmcl --help' or 'pgmcl <command> --help' for usage.\n";
+          return pgmcl::io::kExitUsage;
+        }
+        for (const auto& c : commands) {
+          if (c.sub->parsed()) return c.run();
+        }
+        return pgmcl::io::kExitUsage;  // unreachable: require_subcommand(1)
+      },
+      std::cerr);
+}

@@ -2,7 +2,6 @@
 // they were asked to draw, and a PNG round trip through stb_image.
 #include <gtest/gtest.h>
 #include <stb/stb_image.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -11,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_test_util.hpp"
 #include "pgmcl/io/errors.hpp"
 #include "pgmcl/io/plot.hpp"
 #include "pgmcl/io/png.hpp"
@@ -18,13 +18,6 @@
 
 namespace pgmcl::io {
 namespace {
-
-std::filesystem::path temp_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("pgmcl_cli_pictures_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return dir;
-}
 
 int count_colour(const Canvas& c, Rgb colour, int x0 = 0, int y0 = 0, int x1 = -1, int y1 = -1) {
   if (x1 < 0) x1 = c.width() - 1;
@@ -80,7 +73,8 @@ TEST(CliPictures, PngRoundTripsThroughStbImage) {
   Canvas c(37, 23, colors::kGrey);
   c.set(0, 0, Rgb{1, 2, 3});
   c.set(36, 22, Rgb{250, 128, 7});
-  const auto path = (temp_dir("png") / "c.png").string();
+  const cli_test::TempDir dir("cli_pictures_png");
+  const auto path = dir.file("c.png");
   write_png(c, path);
   int w = 0, h = 0, n = 0;
   unsigned char* data = stbi_load(path.c_str(), &w, &h, &n, 3);

@@ -12,7 +12,8 @@
 ///  - "No return" readings (range >= the scan's no_return_range, e.g. 81.9 m or 50 m for
 ///    SICK scanners) mark nothing occupied and clear free space only up to
 ///    `no_return_clear_range`: glass, black surfaces and open doors also give no return,
-///    so clearing the whole ray would erase real walls.
+///    so clearing the whole ray would erase real walls (Cartographer clears such "missing
+///    data" rays to missing_data_ray_length, 5 m by default, for the same reason).
 ///  - Log-odds are clamped to [l_min, l_max] so the map can still change (OctoMap's
 ///    clamping policy).
 ///

@@ -1,0 +1,34 @@
+#pragma once
+/// Small helpers shared by the pgmcl subcommands.
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "pgmcl/io/carmen.hpp"
+
+namespace pgmcl::app {
+
+/// Throws NotAvailableError: "<command>: not available yet (<why>)".
+[[noreturn]] void not_available(std::string_view command, std::string_view why);
+
+/// Creates `dir` (and parents) if needed; throws IoError naming it on failure.
+std::filesystem::path ensure_directory(const std::string& dir);
+
+/// Creates the parent folder of a file about to be written; throws IoError on failure.
+void ensure_parent_directory(const std::string& file);
+
+/// Reads a CARMEN log (non-strict unless `strict`): malformed lines are dropped and reported
+/// as one "pgmcl: warning: ..." line on stderr naming the first of them (file:line: field).
+[[nodiscard]] io::CarmenLog read_log(const std::string& path, const io::CarmenReadOptions& opt,
+                                     bool strict);
+
+/// CLI11 checks with short messages ("must be > 0" rather than CLI11's range dump).
+[[nodiscard]] CLI::Validator positive();
+[[nodiscard]] CLI::Validator non_negative();
+
+/// "12.3 s" / "1.23 ms" style durations for summaries.
+[[nodiscard]] std::string format_seconds(double s);
+
+}  // namespace pgmcl::app

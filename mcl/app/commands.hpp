@@ -1,0 +1,25 @@
+#pragma once
+/// The `pgmcl` subcommands. Each add_*_command registers its CLI11 subcommand (options and
+/// help) on `app` and returns what to run when the user selects it; the options live in the
+/// returned closure. Failures are reported by throwing (main prints "pgmcl: error: ...").
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace pgmcl::app {
+
+struct Command {
+  CLI::App* sub = nullptr;
+  std::function<int()> run;
+};
+
+Command add_localize_command(CLI::App& app);
+Command add_run_command(CLI::App& app);
+Command add_simulate_command(CLI::App& app);
+Command add_map_command(CLI::App& app);
+Command add_perturb_command(CLI::App& app);
+Command add_eval_command(CLI::App& app);
+Command add_kernel_command(CLI::App& app);
+Command add_calibrate_command(CLI::App& app);
+
+}  // namespace pgmcl::app

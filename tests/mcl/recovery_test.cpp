@@ -36,8 +36,12 @@ TEST_P(GlobalLocalisation, ConvergesFromAnywhere) {
   constexpr std::size_t kBudget = 40;  // updates
   const test::LoopErrors e =
       test::run_loop(loc, world, truth, odom, spec, 7 + start, start, start + kBudget);
-  // Seen: converged after ~x updates from each start; final error ~x cm.
+  // Seen: converged after 10 / 9 / 11 / 12 updates (starts 0 / 60 / 110 / 170), final
+  // error 1.8-4.5 cm, 300 particles (KLD's minimum) at the end.
   ASSERT_NE(e.first_converged, static_cast<std::size_t>(-1)) << "never converged";
+  RecordProperty("converged_after", std::to_string(e.first_converged - start));
+  RecordProperty("final_xy_m", std::to_string(e.final_xy));
+  RecordProperty("last_particles", std::to_string(e.last_particles));
   EXPECT_LT(e.first_converged - start, 25u);
   EXPECT_LT(e.final_xy, 0.1);
   EXPECT_LT(e.final_theta, 3 * kDeg);
@@ -75,11 +79,14 @@ TEST(Kidnapping, RecoversAfterBeingCarriedAway) {
   ASSERT_GT(test::xy_error(truth2[39], truth2[40]), 3.0);
   const test::LoopErrors after =
       test::run_loop(loc, world, truth2, odom2, spec, 2, 40, truth2.size(), 0, 100.0);
-  // Seen: injection starts within a few updates, back within x cm after ~x updates.
+  // Seen: back within 10 cm 29 updates after the kidnapping, 2.9 cm at the end. Over 8
+  // filter seeds of this scenario recovery took 20-86 updates, hence the wide bound.
   std::size_t recovered_at = 0;
   for (std::size_t k = 0; k < after.err_xy.size(); ++k)
     if (after.err_xy[k] > 0.1) recovered_at = k + 1;
-  EXPECT_LT(recovered_at, 60u) << "still lost at update " << recovered_at;
+  RecordProperty("recovered_after", std::to_string(recovered_at));
+  RecordProperty("final_xy_m", std::to_string(after.final_xy));
+  EXPECT_LT(recovered_at, 90u) << "still lost at update " << recovered_at;
   EXPECT_LT(after.final_xy, 0.1);
   EXPECT_LT(after.final_theta, 3 * kDeg);
 }

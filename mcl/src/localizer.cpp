@@ -69,6 +69,11 @@ void Localizer::init_geometry() {
     binner_.reserve(kc.max_particles);
     kld_z_ = normal_quantile(1.0 - kc.delta);
   }
+  // Injected poses are collected during resampling's draws: room for all of them up front.
+  const std::size_t max_out = kc.enabled ? kc.max_particles : cfg_.filter.particles;
+  inj_x_.reserve(max_out);
+  inj_y_.reserve(max_out);
+  inj_theta_.reserve(max_out);
 }
 
 Pose2 Localizer::random_free_pose(Rng& rng) const noexcept {

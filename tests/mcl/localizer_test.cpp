@@ -4,12 +4,15 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <stdexcept>
 #include <string>
 
 #include "closed_loop.hpp"
+#include "pgmcl/mcl/beam_selection.hpp"
 #include "synthetic_world.hpp"
 
 namespace pgmcl {
@@ -191,6 +194,72 @@ TEST(Localizer, SetPoseRejectsBadCovariance) {
   heading_only(2, 2) = 0.1;
   EXPECT_NO_THROW(loc.set_pose({2, 2, 0}, heading_only));
   EXPECT_FLOAT_EQ(loc.particles().x[0], loc.particles().x[1]);
+}
+
+// Beam bookkeeping: selection budget, invalid readings, and endpoints on background.
+TEST(Localizer, CountsSelectedInvalidAndBackgroundBeams) {
+  Scenario sc;
+  LocalizerConfig cfg;  // default selection: at most 120 evenly spread valid beams
+  Localizer loc(sc.world.grid, cfg);
+  const Pose2 truth{3.0, 4.5, 0.3};
+  loc.set_pose(truth, diag_cov(0.02, 1 * kDeg));
+  LaserScan scan = sc.world.scan(truth, {});
+  UpdateResult r = loc.update({}, scan, 0.0);
+  EXPECT_EQ(r.beams_total, 1081u);
+  EXPECT_EQ(r.beams_invalid, 0u);
+  EXPECT_EQ(r.beams_used, 120u);
+  EXPECT_EQ(r.beams_background, 0u);  // every endpoint lies on a mapped wall
+  // 300 readings that end 15 m away, beyond the 11 m x 9 m map, and 100 NaN readings.
+  for (std::size_t i = 0; i < 300; ++i) scan.ranges[i] = 15.0f;
+  for (std::size_t i = 300; i < 400; ++i) scan.ranges[i] = std::nanf("");
+  std::vector<std::uint32_t> valid, sel;
+  valid_beam_indices(scan, cfg.likelihood.beam.max_range, valid);
+  select_beams(valid, cfg.likelihood.selection, sel);
+  const auto far = static_cast<std::size_t>(
+      std::count_if(sel.begin(), sel.end(), [](std::uint32_t i) { return i < 300; }));
+  ASSERT_GT(far, 10u);
+  loc.force_update();
+  r = loc.update({}, scan, 1.0);
+  EXPECT_EQ(r.beams_invalid, 100u);
+  EXPECT_EQ(r.beams_used, 120u);
+  EXPECT_EQ(r.beams_background, far);
+  EXPECT_LT(test::xy_error(r.estimate, truth), 0.05);
+  // A fixed stride over the valid readings.
+  cfg.likelihood.selection = {BeamSelectionMode::kStride, 10, 0};
+  Localizer strided(sc.world.grid, cfg);
+  EXPECT_EQ(strided.update({}, sc.world.scan(truth, {}), 0.0).beams_used, 109u);  // ceil(1081/10)
+}
+
+// Several localizers can share one table; the free-cell list is checked.
+TEST(Localizer, SharedFieldConstructorAndGlobalLocalize) {
+  Scenario sc;
+  LocalizerConfig cfg;
+  cfg.filter.global_particles = 5000;
+  auto field = std::make_shared<const maps::LikelihoodField>(sc.world.grid, cfg.likelihood.beam,
+                                                             cfg.likelihood.table);
+  const std::vector<std::uint32_t> free = free_cell_indices(sc.world.grid);
+  Localizer a(field, free, cfg), b(field, free, cfg);
+  EXPECT_EQ(&a.field(), &b.field());
+  EXPECT_THROW(Localizer(field, {}, cfg), std::invalid_argument);
+  EXPECT_THROW(Localizer(field, {static_cast<std::uint32_t>(sc.world.grid.size())}, cfg),
+               std::invalid_argument);
+  EXPECT_THROW(Localizer(nullptr, free, cfg), std::invalid_argument);
+  // global_localize(): global_particles poses, every one in a free cell, headings spread.
+  a.set_pose({3.0, 4.5, 0.0}, diag_cov(0.02, 1 * kDeg));
+  a.global_localize();
+  const ParticlesView pv = a.particles();
+  ASSERT_EQ(pv.size(), 5000u);
+  double sum_cos = 0.0, sum_sin = 0.0;
+  for (std::size_t i = 0; i < pv.size(); ++i) {
+    const int col = static_cast<int>(pv.x[i] / sc.world.grid.resolution());
+    const int row = static_cast<int>(pv.y[i] / sc.world.grid.resolution());
+    ASSERT_TRUE(sc.world.grid.in_bounds(col, row));
+    ASSERT_TRUE(sc.world.grid.free(col, row)) << col << ", " << row;
+    sum_cos += std::cos(pv.theta[i]);
+    sum_sin += std::sin(pv.theta[i]);
+  }
+  EXPECT_LT(std::hypot(sum_cos, sum_sin) / 5000.0, 0.05);  // uniform headings: R ~ 0.013
+  EXPECT_FALSE(a.last_result().converged);
 }
 
 void expect_invalid(const LocalizerConfig& cfg, const std::string& field) {

@@ -20,16 +20,19 @@ std::string num(double v) {
 }
 
 /// Rows of (key, value text, unit) shared by the YAML and the table.
-std::vector<std::pair<std::string, std::string>> rows(const RunMetrics& m) {
-  std::vector<std::pair<std::string, std::string>> r = {
-      {"updates", std::to_string(m.updates)},
-      {"skipped_updates", std::to_string(m.skipped_updates)},
-      {"update_ms_mean", num(m.update_ms_mean)},
-      {"update_ms_p95", num(m.update_ms_p95)},
-      {"wall_s", num(m.wall_s)},
-      {"particles_mean", num(m.particles_mean)},
-      {"beams_used_mean", num(m.beams_used_mean)},
-  };
+std::vector<std::pair<std::string, std::string>> rows(const RunMetrics& m, bool run_figures) {
+  std::vector<std::pair<std::string, std::string>> r;
+  if (run_figures) {
+    r = {
+        {"updates", std::to_string(m.updates)},
+        {"skipped_updates", std::to_string(m.skipped_updates)},
+        {"update_ms_mean", num(m.update_ms_mean)},
+        {"update_ms_p95", num(m.update_ms_p95)},
+        {"wall_s", num(m.wall_s)},
+        {"particles_mean", num(m.particles_mean)},
+        {"beams_used_mean", num(m.beams_used_mean)},
+    };
+  }
   if (m.accuracy) {
     const AccuracyMetrics& a = *m.accuracy;
     r.emplace_back("ate_rmse_m", num(a.ate_rmse_m));
@@ -48,6 +51,20 @@ std::vector<std::pair<std::string, std::string>> rows(const RunMetrics& m) {
 }
 
 }  // namespace
+
+AccuracyMetrics accuracy_metrics(const AteResult& ate) {
+  AccuracyMetrics a;
+  a.ate_rmse_m = ate.translation.rms;
+  a.ate_max_m = ate.translation.max;
+  a.heading_rmse_deg = ate.heading.rms;
+  a.converged_after_s = ate.converged_after_s;
+  a.matched = ate.matched;
+  return a;
+}
+
+RelationsMetrics relations_metrics(const RelationResult& rel) {
+  return {rel.translation.mean, rel.rotation.mean, rel.matched};
+}
 
 void MetricsAccumulator::add_update(double update_ms, std::size_t particles,
                                     std::size_t beams_used) {
@@ -85,23 +102,23 @@ double percentile(std::vector<double> values, double p) {
   return values[rank - 1];
 }
 
-std::string metrics_yaml(const RunMetrics& m) {
+std::string metrics_yaml(const RunMetrics& m, bool run_figures) {
   std::string out = "# pgmcl run metrics\n";
-  for (const auto& [key, value] : rows(m)) out += key + ": " + value + "\n";
+  for (const auto& [key, value] : rows(m, run_figures)) out += key + ": " + value + "\n";
   return out;
 }
 
-void write_metrics_yaml(const std::string& path, const RunMetrics& m) {
+void write_metrics_yaml(const std::string& path, const RunMetrics& m, bool run_figures) {
   std::ofstream f(path);
   if (!f) throw IoError(path + ": cannot create file");
-  f << metrics_yaml(m);
+  f << metrics_yaml(m, run_figures);
   f.close();
   if (!f) throw IoError(path + ": write failed");
 }
 
-std::string metrics_table(const RunMetrics& m) {
+std::string metrics_table(const RunMetrics& m, bool run_figures) {
   std::size_t w = 0;
-  const auto r = rows(m);
+  const auto r = rows(m, run_figures);
   for (const auto& row : r) w = std::max(w, row.first.size());
   std::string out;
   for (const auto& [key, value] : r) {

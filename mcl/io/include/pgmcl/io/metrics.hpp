@@ -7,6 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "pgmcl/io/evaluation.hpp"
+#include "pgmcl/io/relations.hpp"
+
 namespace pgmcl::io {
 
 /// Accuracy against a ground-truth trajectory (see the evaluation API).
@@ -38,6 +41,13 @@ struct RunMetrics {
   std::optional<RelationsMetrics> relations;
 };
 
+/// The metrics.yaml figures of an ATE evaluation (RMSE and max of the position error,
+/// RMSE of the heading error, convergence time).
+[[nodiscard]] AccuracyMetrics accuracy_metrics(const AteResult& ate);
+/// The metrics.yaml figures of a relations evaluation (mean absolute errors, as in
+/// Kümmerle et al. 2009's tables).
+[[nodiscard]] RelationsMetrics relations_metrics(const RelationResult& rel);
+
 /// Collects per-update figures during a run.
 class MetricsAccumulator {
  public:
@@ -57,13 +67,14 @@ class MetricsAccumulator {
 [[nodiscard]] double percentile(std::vector<double> values, double p);
 
 /// The YAML text of metrics.yaml (keys as in RunMetrics; accuracy and relations keys:
-/// ate_rmse_m, ate_max_m, heading_rmse_deg, converged_after_s (null if never),
-/// relations_trans_m, relations_rot_deg, relations_used).
-[[nodiscard]] std::string metrics_yaml(const RunMetrics& m);
-/// Writes metrics_yaml(m) to `path`; throws IoError on failure.
-void write_metrics_yaml(const std::string& path, const RunMetrics& m);
+/// ate_rmse_m, ate_max_m, heading_rmse_deg, converged_after_s (null if never), truth_matched,
+/// relations_trans_m, relations_rot_deg, relations_used). `run_figures` false leaves out the
+/// filter's own figures (updates .. beams_used_mean), for evaluating a trajectory file.
+[[nodiscard]] std::string metrics_yaml(const RunMetrics& m, bool run_figures = true);
+/// Writes metrics_yaml(m, run_figures) to `path`; throws IoError on failure.
+void write_metrics_yaml(const std::string& path, const RunMetrics& m, bool run_figures = true);
 
 /// Human-readable two-column table of the same figures (for `pgmcl eval` and summaries).
-[[nodiscard]] std::string metrics_table(const RunMetrics& m);
+[[nodiscard]] std::string metrics_table(const RunMetrics& m, bool run_figures = true);
 
 }  // namespace pgmcl::io

@@ -1,0 +1,120 @@
+#!/usr/bin/env bash
+# Macro benchmark: filter time per scan against localisation error (ATE), one command.
+#
+#   bench/sweep.sh [--data DIR] [--out DIR] [--build DIR] [--threads N] [--full] [--only LIST]
+#                  [-- <pgmcl_sweep options, e.g. --recovery 0>]
+#
+# --data   shared real logs (default: <repo>/../shared/data); logs missing there are skipped
+# --out    results (default: <repo>/bench-results/sweep): sweep.csv, sweep.png, maps/, *.txt
+# --build  CMake build dir (default: <repo>/build-bench; configured and built if needed)
+# --full   bigger grid (more particles/beams, all fr079 scans, a 200 m simulated floor)
+# --only   comma list of datasets to run (sim-office,intel,aces,fr079,csail[,sim-large])
+#
+# Datasets: a simulated 50 m office (UTM-30LX random walk with people, biased odometry);
+# intel, aces, fr079 (map from the corrected log with `pgmcl map`, noisy odometry
+# synthesised from the corrected poses with Table 5.6 alphas 0.005,0.0005,0.005,0.0005 and
+# seed 1, i.e. what `pgmcl perturb --odom-noise ... --seed 1` does); csail (the real raw
+# odometry of csail-raw, truth = csail-corrected). Per dataset: particles x beams x table
+# kind; on sim-office and intel also the skip-switch study. Small sweep: ~10 min on 2 cores.
+set -euo pipefail
+
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(dirname "$here")
+data="$root/../shared/data"
+out="$root/bench-results/sweep"
+build="$root/build-bench"
+threads=1
+full=0
+only=""
+passthrough=()
+while [[ $# -gt 0 ]]; do
+  case "$1" in
+    --data) data=$2; shift 2 ;;
+    --out) out=$2; shift 2 ;;
+    --build) build=$2; shift 2 ;;
+    --threads) threads=$2; shift 2 ;;
+    --full) full=1; shift ;;
+    --only) only=$2; shift 2 ;;
+    --) shift; passthrough=("$@"); break ;;
+    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
+    *) echo "sweep.sh: unknown option $1 (see --help)" >&2; exit 2 ;;
+  esac
+done
+
+if [[ ! -f "$build/CMakeCache.txt" ]]; then
+  cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DPGMCL_BUILD_BENCH=ON \
+    -DPGMCL_BUILD_TESTS=OFF >/dev/null
+fi
+cmake --build "$build" -j2 --target pgmcl pgmcl_sweep >/dev/null
+sweep="$build/bench/pgmcl_sweep"
+pgmcl="$build/pgmcl"
+
+mkdir -p "$out/maps"
+csv="$out/sweep.csv"
+rm -f "$csv"
+log="$out/sweep.txt"
+: >"$log"
+
+if [[ $full -eq 1 ]]; then
+  particles="250,500,1000,2000,5000,10000"; beams="15,30,60,120,240,1081"; fr079_scans=0
+  seeds=5
+else
+  particles="500,2000,5000"; beams="30,60,120"; fr079_scans=1200; seeds=3
+fi
+common=(--particles "$particles" --beams "$beams" --threads "$threads" --csv "$csv"
+  "${passthrough[@]}")
+
+want() { [[ -z "$only" || ",$only," == *",$1,"* ]]; }
+
+run() {  # run <label> <args...>
+  echo "== $1" | tee -a "$log"
+  shift
+  "$sweep" "$@" 2>&1 | tee -a "$log"
+}
+
+make_map() {  # make_map <name> <corrected log>
+  local yaml="$out/maps/$1.yaml"
+  if [[ ! -f "$yaml" ]]; then
+    "$pgmcl" map --log "$2" --out "$yaml" | tee -a "$log"
+  fi
+  echo "$yaml"
+}
+
+start=$(date +%s)
+if want sim-office; then
+  run sim-office --name sim-office --sim 50 --sim-duration 120 "${common[@]}" \
+    --switches --switch-seeds "$seeds"
+fi
+if [[ $full -eq 1 ]] && want sim-large; then
+  run sim-large --name sim-large --sim 200 --sim-duration 300 "${common[@]}"
+fi
+for ds in intel aces fr079; do
+  want "$ds" || continue
+  case $ds in
+    intel) f=intel-corrected.log.gz ;;
+    aces) f=aces-corrected.log.gz ;;
+    fr079) f=freiburg-079-corrected.log.gz ;;
+  esac
+  if [[ ! -f "$data/logs/$f" ]]; then
+    echo "== $ds: $data/logs/$f not found, skipped" | tee -a "$log"
+    continue
+  fi
+  map=$(make_map "$ds" "$data/logs/$f" | tail -1)
+  extra=()
+  [[ $ds == intel ]] && extra=(--switches --switch-seeds "$seeds")
+  [[ $ds == fr079 && $fr079_scans -gt 0 ]] && extra=(--max-scans "$fr079_scans")
+  run "$ds" --name "$ds" --map "$map" --log "$data/logs/$f" --perturb 1 \
+    --odom-noise 0.005,0.0005,0.005,0.0005 "${common[@]}" "${extra[@]}"
+done
+if want csail; then
+  if [[ -f "$data/logs/csail-raw.clf.gz" && -f "$data/logs/csail-corrected.log.gz" ]]; then
+    map=$(make_map csail "$data/logs/csail-corrected.log.gz" | tail -1)
+    run csail --name csail --map "$map" --log "$data/logs/csail-raw.clf.gz" \
+      --truth "$data/logs/csail-corrected.log.gz" "${common[@]}"
+  else
+    echo "== csail: logs not found in $data/logs, skipped" | tee -a "$log"
+  fi
+fi
+
+"$here/sweep_plot.sh" "$csv" "$out/sweep.png"
+echo "sweep: $(($(date +%s) - start)) s; wrote $csv, $out/sweep.png, $log" | tee -a "$log"

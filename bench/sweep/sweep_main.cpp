@@ -1,0 +1,364 @@
+/// pgmcl_sweep: run time against error for one dataset. Loads (or simulates) the dataset
+/// once, builds each table kind once, then runs the tracking filter (Localizer, started at
+/// the true first pose) over the whole dataset for every configuration:
+///  - grid study: particles x beams x table kind, with the default skip switches (gating,
+///    selective resampling, beam subsampling) on and KLD off, so "particles" is the count;
+///  - switch study (--switches): from a baseline with every skip switch on, each switch
+///    turned off on its own (gating, selective resampling, KLD, beam subsampling), over
+///    several filter seeds.
+/// Times are steady_clock around Localizer::update(), one process, one thread by default.
+/// Rows are appended to --csv (header written when the file is new); the grid rows carry a
+/// Pareto flag (no other row of the dataset is both faster and more accurate).
+///
+///   pgmcl_sweep --name intel --map intel.yaml --log intel-corrected.log.gz --perturb 1
+///               --particles 500,2000,5000 --beams 30,60,120 --csv sweep.csv [--switches]
+///   pgmcl_sweep --name sim-office --sim 50 ...
+
+#include <CLI/CLI.hpp>
+#include <Eigen/Core>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "pgmcl/mcl/localizer.hpp"
+#include "sweep_data.hpp"
+
+namespace pb = pgmcl::bench;
+using pgmcl::maps::TableKind;
+
+namespace {
+
+struct RunConfig {
+  std::string study = "grid";  // "grid" or "switch:<name>:<on|off>"
+  TableKind kind = TableKind::kIsotropic;
+  std::size_t particles = 2000;
+  std::size_t beams = 60;  // beam subsampling target (kMaxBeams)
+  bool gating = true;
+  bool selective = true;  // selective resampling (N_eff threshold 0.5) vs every update
+  bool kld = false;
+  bool subsample = true;  // kMaxBeams(beams) vs every valid beam
+  std::uint64_t seed = 1;
+};
+
+struct RunResult {
+  std::size_t scans = 0, updates = 0;
+  double ms_per_scan = 0, update_ms_mean = 0, update_ms_p95 = 0;
+  double particles_mean = 0, beams_used_mean = 0;
+  double ate_rmse = 0, ate_max = 0, heading_rmse_deg = 0;
+  bool pareto = false;
+};
+
+pgmcl::LocalizerConfig make_config(const RunConfig& c, int threads, bool recovery) {
+  pgmcl::LocalizerConfig cfg;
+  cfg.filter.recovery.enabled = recovery;
+  cfg.filter.particles = c.particles;
+  cfg.filter.global_particles = c.particles;
+  cfg.filter.kld.enabled = c.kld;
+  cfg.filter.kld.max_particles = std::max<std::size_t>(c.particles, cfg.filter.kld.min_particles);
+  cfg.filter.resample_threshold = c.selective ? 0.5 : 1.0;
+  cfg.gating.enabled = c.gating;
+  cfg.likelihood.selection =
+      c.subsample ? pgmcl::BeamSelection{pgmcl::BeamSelectionMode::kMaxBeams, 1, c.beams}
+                  : pgmcl::BeamSelection{pgmcl::BeamSelectionMode::kAll, 1, 1};
+  cfg.time_backwards = pgmcl::TimeBackwardsPolicy::kReset;
+  cfg.threads = threads;
+  cfg.seed = c.seed;
+  return cfg;
+}
+
+RunResult run_one(const pb::Dataset& d, std::shared_ptr<const pgmcl::maps::LikelihoodField> field,
+                  const std::vector<std::uint32_t>& free_cells, const RunConfig& c, int threads,
+                  bool recovery) {
+  const pgmcl::LocalizerConfig cfg = make_config(c, threads, recovery);
+  pgmcl::Localizer loc(std::move(field), free_cells, cfg);
+  // Tracking: start at the true first pose with a small spread (metres^2, rad^2).
+  const Eigen::Matrix3d cov = Eigen::Vector3d(0.01, 0.01, 0.0025).asDiagonal();
+  loc.set_pose(d.truth.front(), cov);
+  RunResult r;
+  std::vector<double> update_ms;
+  double total_ms = 0, sq = 0, sq_h = 0, particles = 0, beams = 0;
+  for (std::size_t k = 0; k < d.scans.size(); ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const pgmcl::UpdateResult u = loc.update(d.odometry[k], d.scans[k], d.stamps[k]);
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    total_ms += ms;
+    if (u.measured) {
+      update_ms.push_back(ms);
+      particles += static_cast<double>(u.particles);
+      beams += static_cast<double>(u.beams_used);
+    }
+    const double e = std::hypot(u.estimate.x - d.truth[k].x, u.estimate.y - d.truth[k].y);
+    const double eh = pgmcl::wrap_angle(u.estimate.theta - d.truth[k].theta);
+    sq += e * e;
+    sq_h += eh * eh;
+    r.ate_max = std::max(r.ate_max, e);
+  }
+  const auto n = static_cast<double>(d.scans.size());
+  r.scans = d.scans.size();
+  r.updates = update_ms.size();
+  r.ms_per_scan = total_ms / n;
+  r.ate_rmse = std::sqrt(sq / n);
+  r.heading_rmse_deg = std::sqrt(sq_h / n) * 180.0 / std::numbers::pi;
+  if (!update_ms.empty()) {
+    double s = 0;
+    for (double v : update_ms) s += v;
+    r.update_ms_mean = s / static_cast<double>(update_ms.size());
+    std::sort(update_ms.begin(), update_ms.end());
+    const auto rank =
+        static_cast<std::size_t>(std::ceil(0.95 * static_cast<double>(update_ms.size())));
+    r.update_ms_p95 = update_ms[std::max<std::size_t>(rank, 1) - 1];
+    r.particles_mean = particles / static_cast<double>(update_ms.size());
+    r.beams_used_mean = beams / static_cast<double>(update_ms.size());
+  }
+  return r;
+}
+
+std::vector<std::size_t> parse_sizes(const std::string& s) {
+  std::vector<std::size_t> out;
+  std::size_t b = 0;
+  while (b < s.size()) {
+    const std::size_t e = s.find(',', b);
+    out.push_back(std::stoul(s.substr(b, e == std::string::npos ? std::string::npos : e - b)));
+    if (e == std::string::npos) break;
+    b = e + 1;
+  }
+  return out;
+}
+
+const char* on_off(bool b) {
+  return b ? "1" : "0";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"pgmcl_sweep: run time against localisation error for one dataset"};
+  std::string name = "dataset", csv_path = "sweep.csv", sim_size;
+  pb::LogSource src;
+  pb::SimSource sim;
+  std::string particles_s = "500,2000,5000", beams_s = "30,60,120",
+              kinds_s = "isotropic,oriented,offset", noise_s;
+  bool switches = false;
+  std::size_t switch_seeds = 3, switch_particles = 2000, switch_beams = 60;
+  int threads = 1;
+  bool recovery = pgmcl::RecoveryConfig{}.enabled;
+  std::uint64_t perturb_seed = 0;
+  app.add_option("--name", name, "Dataset label in the CSV")->required();
+  app.add_option("--map", src.map_yaml, "Map YAML")->check(CLI::ExistingFile);
+  app.add_option("--log", src.log, "CARMEN log with scans and odometry")->check(CLI::ExistingFile);
+  app.add_option("--truth", src.truth_log, "Corrected CARMEN log (truth); default: --log")
+      ->check(CLI::ExistingFile);
+  app.add_option("--perturb", perturb_seed,
+                 "Replace the log's odometry by noisy odometry from the truth with this seed");
+  app.add_option("--odom-noise", noise_s, "A1,A2,A3,A4 for --perturb (Table 5.6 variance form)");
+  app.add_option("--max-scans", src.max_scans, "Use only the first N scans (0 = all)");
+  app.add_option("--sim", sim_size,
+                 "Simulate a random walk in a synthetic office of this side (m)");
+  app.add_option("--sim-duration", sim.duration_s, "Seconds of simulated driving");
+  app.add_option("--particles", particles_s, "Grid: particle counts");
+  app.add_option("--beams", beams_s, "Grid: beams per update (kMaxBeams)");
+  app.add_option("--kinds", kinds_s, "Grid: table kinds");
+  app.add_flag("--switches", switches, "Also run the skip-switch study");
+  app.add_option("--switch-seeds", switch_seeds, "Filter seeds per switch-study configuration");
+  app.add_option("--switch-particles", switch_particles, "Switch study: particles");
+  app.add_option("--switch-beams", switch_beams, "Switch study: beams when subsampling");
+  app.add_option("--threads", threads, "Localizer threads");
+  app.add_option("--recovery", recovery,
+                 "Augmented-MCL random injection (filter.recovery.enabled; default: library's)");
+  app.add_option("--csv", csv_path, "Append rows here");
+  CLI11_PARSE(app, argc, argv);
+
+  pb::Dataset d;
+  const auto t_load = std::chrono::steady_clock::now();
+  if (!sim_size.empty()) {
+    sim.size_m = std::stod(sim_size);
+    d = pb::simulate_dataset(name, sim);
+  } else {
+    if (src.map_yaml.empty() || src.log.empty()) {
+      std::fprintf(stderr, "pgmcl_sweep: need --map and --log (or --sim)\n");
+      return 2;
+    }
+    if (src.truth_log.empty()) src.truth_log = src.log;
+    if (perturb_seed != 0) {
+      src.perturb = true;
+      src.perturb_seed = perturb_seed;
+    }
+    if (!noise_s.empty()) {
+      double v[4];
+      if (std::sscanf(noise_s.c_str(), "%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], &v[3]) != 4) {
+        std::fprintf(stderr, "pgmcl_sweep: --odom-noise needs A1,A2,A3,A4\n");
+        return 2;
+      }
+      src.odom_noise.a1 = v[0];
+      src.odom_noise.a2 = v[1];
+      src.odom_noise.a3 = v[2];
+      src.odom_noise.a4 = v[3];
+    }
+    d = pb::load_log_dataset(name, src);
+  }
+  // Dead reckoning from the true start: the error the filter has to remove.
+  double odo_sq = 0;
+  for (std::size_t k = 0; k < d.scans.size(); ++k) {
+    const pgmcl::Pose2 p = d.truth.front().compose(d.odometry.front().between(d.odometry[k]));
+    odo_sq += std::pow(std::hypot(p.x - d.truth[k].x, p.y - d.truth[k].y), 2);
+  }
+  std::printf(
+      "%s: %zu scans x %zu beams, map %d x %d at %.3f m, odometry-only ATE %.3f m "
+      "(loaded in %.1f s)\n",
+      name.c_str(), d.scans.size(), d.log_beams, d.grid.width(), d.grid.height(),
+      d.grid.resolution(), std::sqrt(odo_sq / static_cast<double>(d.scans.size())),
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t_load).count());
+  std::fflush(stdout);
+
+  const std::vector<std::uint32_t> free_cells = pgmcl::free_cell_indices(d.grid);
+  std::map<int, std::shared_ptr<const pgmcl::maps::LikelihoodField>> fields;
+  const auto field = [&](TableKind k) {
+    auto& f = fields[static_cast<int>(k)];
+    if (!f) {
+      pgmcl::LocalizerConfig cfg;
+      cfg.likelihood.table.kind = k;
+      cfg.likelihood.table.isotropy_tolerance = 0.0;  // keep oriented tables as oriented
+      f = std::make_shared<const pgmcl::maps::LikelihoodField>(d.grid, cfg.likelihood.beam,
+                                                               cfg.likelihood.table);
+      std::printf("  table %-10s built in %.2f s (%.0f MB)\n", pgmcl::maps::to_string(k),
+                  f->stats().build_seconds, static_cast<double>(f->stats().bytes) / 1e6);
+    }
+    return f;
+  };
+
+  std::vector<std::pair<RunConfig, RunResult>> rows;
+  const auto run = [&](const RunConfig& c) {
+    const RunResult r = run_one(d, field(c.kind), free_cells, c, threads, recovery);
+    std::printf(
+        "  %-24s %-10s n=%-6zu beams=%-5s g%s s%s k%s seed %llu: %7.3f ms/scan "
+        "(%zu updates, %.3f ms each)  ATE %.3f m (max %.2f)\n",
+        c.study.c_str(), pgmcl::maps::to_string(c.kind), c.particles,
+        c.subsample ? std::to_string(c.beams).c_str() : "all", on_off(c.gating),
+        on_off(c.selective), on_off(c.kld), static_cast<unsigned long long>(c.seed), r.ms_per_scan,
+        r.updates, r.update_ms_mean, r.ate_rmse, r.ate_max);
+    std::fflush(stdout);
+    rows.emplace_back(c, r);
+  };
+
+  std::vector<TableKind> kinds;
+  {
+    std::size_t b = 0;
+    while (b < kinds_s.size()) {
+      const std::size_t e = kinds_s.find(',', b);
+      kinds.push_back(pgmcl::maps::table_kind_from_string(
+          kinds_s.substr(b, e == std::string::npos ? std::string::npos : e - b)));
+      if (e == std::string::npos) break;
+      b = e + 1;
+    }
+  }
+  for (const TableKind k : kinds)
+    for (const std::size_t n : parse_sizes(particles_s))
+      for (const std::size_t b : parse_sizes(beams_s)) {
+        RunConfig c;
+        c.kind = k;
+        c.particles = n;
+        c.beams = b;
+        run(c);
+      }
+
+  if (switches) {
+    // Baseline: every skip switch on. Then each one off on its own.
+    struct Variant {
+      const char* name;
+      void (*off)(RunConfig&);
+    };
+    const Variant variants[] = {
+        {"baseline", [](RunConfig&) {}},
+        {"gating", [](RunConfig& c) { c.gating = false; }},
+        {"selective_resampling", [](RunConfig& c) { c.selective = false; }},
+        {"kld", [](RunConfig& c) { c.kld = false; }},
+        {"beam_subsampling", [](RunConfig& c) { c.subsample = false; }},
+    };
+    for (const Variant& v : variants)
+      for (std::uint64_t s = 1; s <= switch_seeds; ++s) {
+        RunConfig c;
+        c.study = std::string("switch:") + v.name;
+        c.particles = switch_particles;
+        c.beams = switch_beams;
+        c.kld = true;
+        c.seed = s;
+        v.off(c);
+        run(c);
+      }
+  }
+
+  // Pareto flags over the grid rows of this dataset.
+  for (auto& [c, r] : rows) {
+    if (c.study != "grid") continue;
+    r.pareto = true;
+    for (const auto& [c2, r2] : rows) {
+      if (c2.study != "grid" || &r2 == &r) continue;
+      if (r2.ms_per_scan <= r.ms_per_scan && r2.ate_rmse <= r.ate_rmse &&
+          (r2.ms_per_scan < r.ms_per_scan || r2.ate_rmse < r.ate_rmse)) {
+        r.pareto = false;
+        break;
+      }
+    }
+  }
+
+  const bool fresh =
+      !std::filesystem::exists(csv_path) || std::filesystem::file_size(csv_path) == 0;
+  std::FILE* f = std::fopen(csv_path.c_str(), "a");
+  if (!f) {
+    std::fprintf(stderr, "pgmcl_sweep: cannot write %s\n", csv_path.c_str());
+    return 1;
+  }
+  if (fresh)
+    std::fprintf(f,
+                 "dataset,study,kind,particles,beams,gating,selective,kld,subsample,seed,threads,"
+                 "scans,updates,ms_per_scan,update_ms_mean,update_ms_p95,particles_mean,"
+                 "beams_used_mean,ate_rmse_m,ate_max_m,heading_rmse_deg,pareto,recovery\n");
+  for (const auto& [c, r] : rows)
+    std::fprintf(f,
+                 "%s,%s,%s,%zu,%zu,%s,%s,%s,%s,%llu,%d,%zu,%zu,%.4f,%.4f,%.4f,%.1f,%.1f,%.5f,%.4f,%"
+                 ".3f,%d,%d\n",
+                 name.c_str(), c.study.c_str(), pgmcl::maps::to_string(c.kind), c.particles,
+                 c.beams, on_off(c.gating), on_off(c.selective), on_off(c.kld), on_off(c.subsample),
+                 static_cast<unsigned long long>(c.seed), threads, r.scans, r.updates,
+                 r.ms_per_scan, r.update_ms_mean, r.update_ms_p95, r.particles_mean,
+                 r.beams_used_mean, r.ate_rmse, r.ate_max, r.heading_rmse_deg, r.pareto ? 1 : 0,
+                 recovery ? 1 : 0);
+  std::fclose(f);
+
+  if (switches) {
+    // One row per switch: mean over seeds, against the baseline.
+    std::map<std::string, std::pair<double, double>> mean;  // study -> (ms/scan, ATE)
+    std::map<std::string, int> count;
+    for (const auto& [c, r] : rows) {
+      if (c.study == "grid") continue;
+      mean[c.study].first += r.ms_per_scan;
+      mean[c.study].second += r.ate_rmse;
+      ++count[c.study];
+    }
+    for (auto& [k, v] : mean) {
+      v.first /= count[k];
+      v.second /= count[k];
+    }
+    const auto base = mean["switch:baseline"];
+    std::printf(
+        "\n%s skip switches (baseline: all on, %zu particles, %zu beams, KLD on; mean "
+        "of %zu seeds):\n  %-22s %12s %12s %12s %12s\n",
+        name.c_str(), switch_particles, switch_beams, switch_seeds, "switch", "ms/scan off",
+        "time saved", "ATE off (m)", "ATE change");
+    for (const auto& [k, v] : mean) {
+      if (k == "switch:baseline") continue;
+      std::printf("  %-22s %12.3f %11.0f%% %12.4f %+12.4f\n", k.substr(7).c_str(), v.first,
+                  100.0 * (v.first - base.first) / v.first, v.second, base.second - v.second);
+    }
+    std::printf("  (time saved = (off - on) / off; ATE change = ATE(on) - ATE(off), metres)\n");
+  }
+  return 0;
+}

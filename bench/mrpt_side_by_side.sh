@@ -1,0 +1,119 @@
+#!/usr/bin/env bash
+# pgmcl and MRPT 2.5's Monte Carlo localisation side by side, on the same logs, maps,
+# (perturbed) odometry and particle counts, in one run:
+#
+#   bench/mrpt_side_by_side.sh [--data DIR] [--out DIR] [--build DIR] [--particles "1000 5000"]
+#                              [--beams 90] [--only LIST] [--full] [-- <pgmcl_sweep options>]
+#
+# MRPT runs through pgmcl_mrpt_harness (bench/mrpt/mrpt_harness.cpp: CMonteCarloLocalization2D
+# + CParticleFilter, SIR, systematic resampling), which needs libmrpt-dev at configure time.
+# The pf-localization app (mrpt-apps) is not used for figures: it writes no trajectory,
+# carmen2rawlog drops timestamps and mislays FLASER beams without a PARAM line, and
+# ros-map-yaml2mrpt snaps the origin (PEERS.md); the harness feeds MRPT the exact data.
+# Without MRPT this script says what to install and exits 0.
+#
+# Datasets: intel, aces, fr079 (first 1200 scans unless --full), csail; the maps come from
+# `pgmcl map` (shared with bench/sweep.sh's output if --out is the same). Writes
+# side_by_side.csv (one row per engine and setting) and prints time per update, ATE and
+# the pgmcl/MRPT time ratio.
+set -euo pipefail
+
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(dirname "$here")
+data="$root/../shared/data"
+out="$root/bench-results/mrpt"
+build="$root/build-bench"
+particles="1000 5000"
+beams=90
+only=""
+full=0
+passthrough=()
+while [[ $# -gt 0 ]]; do
+  case "$1" in
+    --data) data=$2; shift 2 ;;
+    --out) out=$2; shift 2 ;;
+    --build) build=$2; shift 2 ;;
+    --particles) particles=$2; shift 2 ;;
+    --beams) beams=$2; shift 2 ;;
+    --only) only=$2; shift 2 ;;
+    --full) full=1; shift ;;
+    --) shift; passthrough=("$@"); break ;;
+    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
+    *) echo "mrpt_side_by_side.sh: unknown option $1 (see --help)" >&2; exit 2 ;;
+  esac
+done
+
+if ! ls /usr/lib/*/cmake/mrpt-slam/mrpt-slam-config.cmake >/dev/null 2>&1; then
+  echo "mrpt_side_by_side: SKIPPED, MRPT is not installed."
+  echo "  To run it: apt-get install mrpt-apps libmrpt-dev   (then re-run this script)"
+  exit 0
+fi
+if [[ ! -f "$build/CMakeCache.txt" ]]; then
+  cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DPGMCL_BUILD_BENCH=ON \
+    -DPGMCL_BUILD_TESTS=OFF >/dev/null
+else
+  cmake "$build" >/dev/null  # pick up a newly installed libmrpt-dev
+fi
+cmake --build "$build" -j2 --target pgmcl pgmcl_sweep pgmcl_mrpt_harness >/dev/null
+harness="$build/bench/pgmcl_mrpt_harness"
+sweep="$build/bench/pgmcl_sweep"
+pgmcl="$build/pgmcl"
+if [[ ! -x "$harness" ]]; then
+  echo "mrpt_side_by_side: SKIPPED, pgmcl_mrpt_harness was not built (is libmrpt-dev installed?)"
+  exit 0
+fi
+
+mkdir -p "$out/maps"
+csv="$out/side_by_side.csv"
+pg_csv="$out/pgmcl_rows.csv"
+rm -f "$csv" "$pg_csv"
+log="$out/side_by_side.txt"
+: >"$log"
+want() { [[ -z "$only" || ",$only," == *",$1,"* ]]; }
+max_scans=1200
+[[ $full -eq 1 ]] && max_scans=0
+
+for ds in intel aces fr079 csail; do
+  want "$ds" || continue
+  case $ds in
+    intel) logf=intel-corrected.log.gz; truth=$logf; odo=(--perturb 1) ;;
+    aces) logf=aces-corrected.log.gz; truth=$logf; odo=(--perturb 1) ;;
+    fr079) logf=freiburg-079-corrected.log.gz; truth=$logf; odo=(--perturb 1) ;;
+    csail) logf=csail-raw.clf.gz; truth=csail-corrected.log.gz; odo=() ;;
+  esac
+  if [[ ! -f "$data/logs/$logf" || ! -f "$data/logs/$truth" ]]; then
+    echo "== $ds: logs not found in $data/logs, skipped" | tee -a "$log"
+    continue
+  fi
+  yaml="$out/maps/$ds.yaml"
+  [[ -f "$yaml" ]] || "$pgmcl" map --log "$data/logs/$truth" --out "$yaml" | tee -a "$log"
+  lim=()
+  [[ $ds == fr079 && $max_scans -gt 0 ]] && lim=(--max-scans "$max_scans")
+  for n in $particles; do
+    echo "== $ds, $n particles, $beams beams" | tee -a "$log"
+    "$sweep" --name "$ds" --map "$yaml" --log "$data/logs/$logf" --truth "$data/logs/$truth" \
+      "${odo[@]}" "${lim[@]}" --particles "$n" --beams "$beams" --kinds isotropic \
+      --csv "$pg_csv" "${passthrough[@]}" 2>&1 | tee -a "$log"
+    "$harness" --name "$ds" --map "$yaml" --log "$data/logs/$logf" --truth "$data/logs/$truth" \
+      "${odo[@]}" "${lim[@]}" --particles "$n" --beams "$beams" --csv "$csv" 2>&1 | tee -a "$log"
+  done
+done
+
+# pgmcl rows in the harness's columns (time per performed measurement update, ATE).
+awk -F, 'NR > 1 { printf "%s,pgmcl,%s,%.0f,%s,%s,%s,%s,%s\n", $1, $4, $18, $13, $15, $16, $19, $20 }' \
+  "$pg_csv" >>"$csv"
+{
+  echo
+  echo "Side by side (time per measurement update; ATE RMSE over every scan):"
+  printf "%-8s %9s %6s | %10s %10s %7s | %9s %9s\n" dataset particles beams "pgmcl ms" "MRPT ms" \
+    "MRPT/pg" "pgmcl ATE" "MRPT ATE"
+  awk -F, 'NR > 1 { k = $1 "," $3; if ($2 == "mrpt") { mt[k] = $6; ma[k] = $8; mb[k] = $4 }
+                    else { pt[k] = $6; pa[k] = $8; pb[k] = $4; order[++n] = k } }
+           END { for (i = 1; i <= n; i++) { k = order[i]; split(k, a, ",");
+                   if (!(k in mt)) continue;
+                   printf "%-8s %9s %3s/%-3s | %10.3f %10.3f %7.1f | %8.3fm %8.3fm\n", a[1], a[2],
+                     pb[k], mb[k], pt[k], mt[k], (pt[k] > 0 ? mt[k] / pt[k] : 0), pa[k], ma[k] } }' \
+    "$csv"
+  echo "(beams: pgmcl/MRPT per update; MRPT/pg = how many times longer MRPT takes per update)"
+} | tee -a "$log"
+echo "mrpt_side_by_side: wrote $csv and $log"

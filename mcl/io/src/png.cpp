@@ -128,6 +128,11 @@ void Canvas::arrow(PixelPoint tail, double angle, double length, Rgb c, double w
   }
 }
 
+void Canvas::blit(const Canvas& src, int x, int y) noexcept {
+  for (int sy = 0; sy < src.height(); ++sy)
+    for (int sx = 0; sx < src.width(); ++sx) set(x + sx, y + sy, src.at(sx, sy));
+}
+
 void Canvas::text(int x, int y, std::string_view s, Rgb c, int scale) {
   if (s.empty()) return;
   scale = std::max(scale, 1);

@@ -75,7 +75,8 @@ Canvas render_overlay(const maps::OccupancyGrid& grid, const OverlayData& data) 
     const PixelPoint q = frame.to_pixel(p.x, p.y);
     canvas.disc(q.x, q.y, dot, colors::kOrange);
   }
-  canvas.polyline(path(data.truth), colors::kGreen, line_w);
+  // Truth wider underneath, so it shows on both sides of an estimate that follows it.
+  canvas.polyline(path(data.truth), colors::kGreen, line_w + 2.0);
   canvas.polyline(path(data.estimate), colors::kRed, line_w);
   const double arrow_len = std::max(12.0, 0.6 * frame.pixels_per_metre());
   if (!data.truth.empty()) {

@@ -62,6 +62,8 @@ class Canvas {
   /// Arrow from `tail` of `length` pixels in image direction `angle` (radians, measured
   /// counter-clockwise as seen on screen, i.e. y up), with a head a third of its length.
   void arrow(PixelPoint tail, double angle, double length, Rgb c, double width = 1.0) noexcept;
+  /// Copies `src` with its top-left pixel at (x, y), clipped to this canvas.
+  void blit(const Canvas& src, int x, int y) noexcept;
   /// ASCII text with its top-left corner at (x, y), glyphs from stb_easy_font
   /// (about 6 x 7 pixels per character at scale 1), magnified by an integer scale.
   void text(int x, int y, std::string_view s, Rgb c, int scale = 1);

@@ -1,0 +1,251 @@
+#include "localize_pipeline.hpp"
+
+#include <Eigen/Core>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <stdexcept>
+
+#include "app_util.hpp"
+#include "pgmcl/io/cli_errors.hpp"
+#include "pgmcl/io/config_yaml.hpp"
+#include "pgmcl/io/errors.hpp"
+#include "pgmcl/io/evaluation.hpp"
+#include "pgmcl/io/odometry_pairing.hpp"
+#include "pgmcl/io/plot.hpp"
+#include "pgmcl/io/png_overlay.hpp"
+#include "pgmcl/io/progress.hpp"
+#include "pgmcl/io/tum.hpp"
+#include "pgmcl/mcl/localizer.hpp"
+
+namespace pgmcl::app {
+namespace {
+
+constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+constexpr std::size_t kMaxDrawnParticles = 5000;
+
+Eigen::Matrix3d belief_covariance(const InitialBelief& b) {
+  const double sy = b.sigma_y >= 0.0 ? b.sigma_y : b.sigma_xy;
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  cov(0, 0) = b.sigma_xy * b.sigma_xy;
+  cov(1, 1) = sy * sy;
+  cov(2, 2) = b.sigma_theta * b.sigma_theta;
+  return cov;
+}
+
+/// Position and heading error over time, one panel each.
+void write_error_png(const std::string& path, const io::AteResult& ate, double t0) {
+  io::PlotSeries pos{"position error", {}, {}, io::colors::kRed};
+  io::PlotSeries head{"heading error", {}, {}, io::colors::kBlue};
+  for (const io::PoseError& e : ate.errors) {
+    pos.x.push_back(e.stamp - t0);
+    pos.y.push_back(e.translation);
+    head.x.push_back(e.stamp - t0);
+    head.y.push_back(e.rotation_deg);
+  }
+  char title[160];
+  std::snprintf(title, sizeof title, "Position error (ATE RMSE %.3f m, max %.3f m)",
+                ate.translation.rms, ate.translation.max);
+  io::LinePlot p1{title, "time since first scan [s]", "metres", {pos}, 1000, 340, true};
+  std::snprintf(title, sizeof title, "Heading error (RMSE %.2f deg)", ate.heading.rms);
+  io::LinePlot p2{title, "time since first scan [s]", "degrees", {head}, 1000, 340, true};
+  io::Canvas c(1000, 680);
+  c.blit(io::render_line_plot(p1), 0, 0);
+  c.blit(io::render_line_plot(p2), 0, 340);
+  io::write_png(c, path);
+}
+
+std::string format_pose(const Pose2& p) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "(%.3f, %.3f, %.1f deg)", p.x, p.y, p.theta * kRadToDeg);
+  return buf;
+}
+
+}  // namespace
+
+InitialBelief parse_init(const std::string& text) {
+  const std::vector<double> v =
+      io::parse_number_list(text, "--init", {3, 6}, "X,Y,THETA[,SX,SY,STH] (m, m, rad)");
+  InitialBelief b;
+  b.kind = InitialBelief::Kind::kPose;
+  b.pose = {v[0], v[1], wrap_angle(v[2])};
+  if (v.size() == 6) {
+    if (!(v[3] > 0.0 && v[4] > 0.0 && v[5] > 0.0)) {
+      throw io::UsageError("--init: SX, SY and STH must be > 0, got '" + text + "'");
+    }
+    b.sigma_xy = v[3];
+    b.sigma_y = v[4];
+    b.sigma_theta = v[5];
+  }
+  return b;
+}
+
+io::RunMetrics run_localization(const LocalizeJob& job) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  const io::CarmenLog& log = *job.log;
+  const io::PairedScans paired = io::pair_odometry(log);
+  std::size_t usable = 0;
+  for (const auto& p : paired.scans) usable += p.source != io::OdomSource::kNone;
+  if (usable == 0) {
+    throw io::UsageError(job.log_name +
+                         ": no laser scan with odometry (need ODOM messages or FLASER/"
+                         "ROBOTLASER1 scans, which carry their odometry pose)");
+  }
+
+  Localizer loc(*job.map, job.config);
+  // Initial belief.
+  double first_stamp = 0.0;
+  for (const auto& p : paired.scans) {
+    if (p.source != io::OdomSource::kNone) {
+      first_stamp = log.scans[p.scan_index].scan.stamp;
+      break;
+    }
+  }
+  std::string init_text = "global localisation";
+  if (job.init.kind == InitialBelief::Kind::kPose) {
+    loc.set_pose(job.init.pose, belief_covariance(job.init));
+    init_text = "--init " + format_pose(job.init.pose);
+  } else if (job.init.kind == InitialBelief::Kind::kTruth) {
+    std::optional<Pose2> start;
+    if (job.truth) {
+      io::Trajectory sorted = *job.truth;
+      io::sort_by_stamp(sorted);
+      start = io::interpolate_at(sorted, first_stamp, 1.0);
+      if (!start) {
+        const auto i = io::nearest_index(sorted, first_stamp, 0.5);
+        if (i) start = sorted[*i].pose;
+      }
+    }
+    if (start) {
+      loc.set_pose(*start, belief_covariance(job.init));
+      init_text = "ground truth at the first scan " + format_pose(*start);
+    } else {
+      std::fprintf(stderr,
+                   "pgmcl: warning: no ground-truth pose at the first scan (t = %.3f); "
+                   "starting with global localisation\n",
+                   first_stamp);
+    }
+  }
+  if (!job.quiet) std::fprintf(stderr, "localize: start: %s\n", init_text.c_str());
+
+  io::MetricsAccumulator acc;
+  io::Trajectory trajectory;
+  trajectory.reserve(usable);
+  io::Progress progress = io::Progress::on_stderr("localize", usable, job.quiet);
+  std::size_t done = 0, out_of_order = 0, unpaired = 0;
+  double last_stamp = -std::numeric_limits<double>::infinity();
+  for (const io::PairedScan& p : paired.scans) {
+    if (p.source == io::OdomSource::kNone) {
+      ++unpaired;
+      continue;
+    }
+    const io::CarmenScan& s = log.scans[p.scan_index];
+    const double stamp = s.scan.stamp;
+    if (stamp < last_stamp) {
+      ++out_of_order;  // a scan stamped before its predecessor cannot be filtered in order
+      continue;
+    }
+    last_stamp = stamp;
+    UpdateResult r;
+    try {
+      r = loc.update(p.odom, s.scan, stamp);
+    } catch (const std::invalid_argument& e) {
+      throw io::FormatError(job.log_name, s.line, std::string(io::message_name(s.message)),
+                            std::string("rejected by the filter: ") + e.what());
+    }
+    trajectory.push_back({stamp, r.estimate});
+    if (r.skipped == SkipReason::kNone) {
+      acc.add_update(r.timings.total_ms, r.particles, r.beams_used);
+    } else {
+      acc.add_skipped();
+    }
+    ++done;
+    char extra[96];
+    std::snprintf(extra, sizeof extra, "%zu particles%s", r.particles,
+                  r.converged ? ", converged" : "");
+    progress.update(done, extra);
+  }
+  const double wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  io::RunMetrics m = acc.summarise(wall_s);
+  progress.finish();
+  if (out_of_order > 0) {
+    std::fprintf(stderr,
+                 "pgmcl: warning: %s: skipped %zu scan(s) stamped before the previous one\n",
+                 job.log_name.c_str(), out_of_order);
+  }
+  if (unpaired > 0) {
+    std::fprintf(stderr, "pgmcl: warning: %s: skipped %zu scan(s) without odometry\n",
+                 job.log_name.c_str(), unpaired);
+  }
+
+  std::optional<io::AteResult> ate;
+  if (job.truth) {
+    ate = io::evaluate_ate(trajectory, *job.truth);
+    m.accuracy = io::accuracy_metrics(*ate);
+  }
+  if (job.relations) {
+    io::RelationOptions ro;
+    ro.time_offset = job.relations_time_offset;
+    m.relations = io::relations_metrics(io::evaluate_relations(trajectory, *job.relations, ro));
+  }
+
+  // Results.
+  const std::filesystem::path dir = ensure_directory(job.out_dir);
+  io::write_tum((dir / "trajectory.tum").string(), trajectory);
+  io::write_metrics_yaml((dir / "metrics.yaml").string(), m);
+  {
+    std::ofstream f(dir / "config.yaml");
+    f << io::localizer_config_yaml(job.config);
+    if (!f) throw io::IoError((dir / "config.yaml").string() + ": write failed");
+  }
+  std::vector<Pose2> est, truth_path, cloud;
+  est.reserve(trajectory.size());
+  for (const auto& t : trajectory) est.push_back(t.pose);
+  if (job.truth) {
+    for (const auto& t : *job.truth) truth_path.push_back(t.pose);
+  }
+  const ParticlesView pv = loc.particles();
+  const std::size_t stride = pv.size() / kMaxDrawnParticles + 1;
+  for (std::size_t i = 0; i < pv.size(); i += stride) cloud.push_back(pv.global_pose(i));
+  io::write_overlay_png((dir / "overlay.png").string(), *job.map,
+                        io::OverlayData{truth_path, est, cloud, job.title});
+  if (ate && !ate->errors.empty()) {
+    write_error_png((dir / "error.png").string(), *ate, trajectory.front().stamp);
+  }
+  return m;
+}
+
+std::string summary_line(const io::RunMetrics& m, const std::string& out_dir) {
+  char buf[512];
+  int n = std::snprintf(buf, sizeof buf,
+                        "localize: %zu updates (%zu skipped), %.2f ms/update (p95 %.2f), "
+                        "%.0f particles, %.0f beams",
+                        m.updates, m.skipped_updates, m.update_ms_mean, m.update_ms_p95,
+                        m.particles_mean, m.beams_used_mean);
+  std::string s(buf, static_cast<std::size_t>(std::max(n, 0)));
+  if (m.accuracy) {
+    const auto& a = *m.accuracy;
+    n = std::snprintf(buf, sizeof buf, "; ATE RMSE %.3f m (max %.3f), heading RMSE %.2f deg",
+                      a.ate_rmse_m, a.ate_max_m, a.heading_rmse_deg);
+    s.append(buf, static_cast<std::size_t>(std::max(n, 0)));
+    if (a.converged_after_s) {
+      n = std::snprintf(buf, sizeof buf, ", converged after %.1f s", *a.converged_after_s);
+    } else {
+      n = std::snprintf(buf, sizeof buf, ", never converged");
+    }
+    s.append(buf, static_cast<std::size_t>(std::max(n, 0)));
+  }
+  if (m.relations) {
+    n = std::snprintf(buf, sizeof buf, "; relations %.3f m / %.2f deg (%zu)", m.relations->trans_m,
+                      m.relations->rot_deg, m.relations->used);
+    s.append(buf, static_cast<std::size_t>(std::max(n, 0)));
+  }
+  s += "; wrote " + out_dir;
+  return s;
+}
+
+}  // namespace pgmcl::app

@@ -38,7 +38,7 @@ while [[ $# -gt 0 ]]; do
     --only) only=$2; shift 2 ;;
     --full) full=1; shift ;;
     --) shift; passthrough=("$@"); break ;;
-    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
+    -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
     *) echo "mrpt_side_by_side.sh: unknown option $1 (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -79,7 +79,8 @@ for ds in intel aces fr079 csail; do
     intel) logf=intel-corrected.log.gz; truth=$logf; odo=(--perturb 1) ;;
     aces) logf=aces-corrected.log.gz; truth=$logf; odo=(--perturb 1) ;;
     fr079) logf=freiburg-079-corrected.log.gz; truth=$logf; odo=(--perturb 1) ;;
-    csail) logf=csail-raw.clf.gz; truth=csail-corrected.log.gz; odo=() ;;
+    csail) logf=csail-raw.clf.gz; truth=csail-corrected.log.gz
+      odo=(--motion-noise 0.05,0.01,0.02,0.005) ;;  # real odometry (see sweep.sh)
   esac
   if [[ ! -f "$data/logs/$logf" || ! -f "$data/logs/$truth" ]]; then
     echo "== $ds: logs not found in $data/logs, skipped" | tee -a "$log"

@@ -27,7 +27,7 @@ while [[ $# -gt 0 ]]; do
     --threads) thread_list=$2; shift 2 ;;
     --quick) quick=1; shift ;;
     --) shift; extra=("$@"); break ;;
-    -h|--help) sed -n '2,15p' "$0"; exit 0 ;;
+    -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
     *) echo "run_micro.sh: unknown option $1 (see --help)" >&2; exit 2 ;;
   esac
 done

@@ -68,6 +68,10 @@ int main(int argc, char** argv) {
   app.add_option("--max-corrs", max_corrs, "LF_maxCorrsDistance, metres");
   app.add_option("--seed", seed, "Random seed (MRPT's global generator)");
   app.add_option("--csv", csv_path, "Append a row here");
+  std::string motion_s;
+  app.add_option("--motion-noise", motion_s,
+                 "A1,A2,A3,A4 as pgmcl_sweep's (Table 5.6 variance form), mapped to MRPT's "
+                 "Gaussian model");
   CLI11_PARSE(app, argc, argv);
   if (src.truth_log.empty()) src.truth_log = src.log;
   if (perturb_seed != 0) {
@@ -131,7 +135,12 @@ int main(int argc, char** argv) {
 
   mrpt::obs::CActionRobotMovement2D::TMotionModelOptions mm;
   mm.modelSelection = mrpt::obs::CActionRobotMovement2D::mmGaussian;
-  const pgmcl::MotionNoise n = pgmcl::LocalizerConfig{}.motion.noise;
+  pgmcl::MotionNoise n = pgmcl::LocalizerConfig{}.motion.noise;
+  if (!motion_s.empty() &&
+      std::sscanf(motion_s.c_str(), "%lf,%lf,%lf,%lf", &n.a1, &n.a2, &n.a3, &n.a4) != 4) {
+    std::fprintf(stderr, "pgmcl_mrpt_harness: --motion-noise needs A1,A2,A3,A4\n");
+    return 2;
+  }
   mm.gaussianModel = {std::sqrt(n.a3),
                       std::sqrt(n.a4),
                       std::sqrt(n.a2),

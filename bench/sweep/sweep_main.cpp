@@ -44,6 +44,7 @@ struct RunConfig {
   bool selective = true;  // selective resampling (N_eff threshold 0.5) vs every update
   bool kld = false;
   bool subsample = true;  // kMaxBeams(beams) vs every valid beam
+  bool recovery = true;   // augmented-MCL random injection (not a skip switch; --recovery)
   std::uint64_t seed = 1;
 };
 
@@ -55,9 +56,11 @@ struct RunResult {
   bool pareto = false;
 };
 
-pgmcl::LocalizerConfig make_config(const RunConfig& c, int threads, bool recovery) {
+pgmcl::LocalizerConfig make_config(const RunConfig& c, int threads,
+                                   const pgmcl::MotionNoise& motion) {
   pgmcl::LocalizerConfig cfg;
-  cfg.filter.recovery.enabled = recovery;
+  cfg.motion.noise = motion;
+  cfg.filter.recovery.enabled = c.recovery;
   cfg.filter.particles = c.particles;
   cfg.filter.global_particles = c.particles;
   cfg.filter.kld.enabled = c.kld;
@@ -75,8 +78,8 @@ pgmcl::LocalizerConfig make_config(const RunConfig& c, int threads, bool recover
 
 RunResult run_one(const pb::Dataset& d, std::shared_ptr<const pgmcl::maps::LikelihoodField> field,
                   const std::vector<std::uint32_t>& free_cells, const RunConfig& c, int threads,
-                  bool recovery) {
-  const pgmcl::LocalizerConfig cfg = make_config(c, threads, recovery);
+                  const pgmcl::MotionNoise& motion) {
+  const pgmcl::LocalizerConfig cfg = make_config(c, threads, motion);
   pgmcl::Localizer loc(std::move(field), free_cells, cfg);
   // Tracking: start at the true first pose with a small spread (metres^2, rad^2).
   const Eigen::Matrix3d cov = Eigen::Vector3d(0.01, 0.01, 0.0025).asDiagonal();
@@ -150,6 +153,7 @@ int main(int argc, char** argv) {
   std::size_t switch_seeds = 3, switch_particles = 2000, switch_beams = 60;
   int threads = 1;
   bool recovery = pgmcl::RecoveryConfig{}.enabled;
+  std::string motion_s;
   std::uint64_t perturb_seed = 0;
   app.add_option("--name", name, "Dataset label in the CSV")->required();
   app.add_option("--map", src.map_yaml, "Map YAML")->check(CLI::ExistingFile);
@@ -171,10 +175,18 @@ int main(int argc, char** argv) {
   app.add_option("--switch-particles", switch_particles, "Switch study: particles");
   app.add_option("--switch-beams", switch_beams, "Switch study: beams when subsampling");
   app.add_option("--threads", threads, "Localizer threads");
+  app.add_option("--motion-noise", motion_s,
+                 "Filter's motion model A1,A2,A3,A4 (Table 5.6 variance form; default: library's)");
   app.add_option("--recovery", recovery,
                  "Augmented-MCL random injection (filter.recovery.enabled; default: library's)");
   app.add_option("--csv", csv_path, "Append rows here");
   CLI11_PARSE(app, argc, argv);
+  pgmcl::MotionNoise motion = pgmcl::LocalizerConfig{}.motion.noise;
+  if (!motion_s.empty() && std::sscanf(motion_s.c_str(), "%lf,%lf,%lf,%lf", &motion.a1, &motion.a2,
+                                       &motion.a3, &motion.a4) != 4) {
+    std::fprintf(stderr, "pgmcl_sweep: --motion-noise needs A1,A2,A3,A4\n");
+    return 2;
+  }
 
   pb::Dataset d;
   const auto t_load = std::chrono::steady_clock::now();
@@ -236,14 +248,15 @@ int main(int argc, char** argv) {
 
   std::vector<std::pair<RunConfig, RunResult>> rows;
   const auto run = [&](const RunConfig& c) {
-    const RunResult r = run_one(d, field(c.kind), free_cells, c, threads, recovery);
+    const RunResult r = run_one(d, field(c.kind), free_cells, c, threads, motion);
     std::printf(
-        "  %-24s %-10s n=%-6zu beams=%-5s g%s s%s k%s seed %llu: %7.3f ms/scan "
+        "  %-24s %-10s n=%-6zu beams=%-5s g%s s%s k%s r%s seed %llu: %7.3f ms/scan "
         "(%zu updates, %.3f ms each)  ATE %.3f m (max %.2f)\n",
         c.study.c_str(), pgmcl::maps::to_string(c.kind), c.particles,
         c.subsample ? std::to_string(c.beams).c_str() : "all", on_off(c.gating),
-        on_off(c.selective), on_off(c.kld), static_cast<unsigned long long>(c.seed), r.ms_per_scan,
-        r.updates, r.update_ms_mean, r.ate_rmse, r.ate_max);
+        on_off(c.selective), on_off(c.kld), on_off(c.recovery),
+        static_cast<unsigned long long>(c.seed), r.ms_per_scan, r.updates, r.update_ms_mean,
+        r.ate_rmse, r.ate_max);
     std::fflush(stdout);
     rows.emplace_back(c, r);
   };
@@ -266,6 +279,7 @@ int main(int argc, char** argv) {
         c.kind = k;
         c.particles = n;
         c.beams = b;
+        c.recovery = recovery;
         run(c);
       }
 
@@ -281,6 +295,8 @@ int main(int argc, char** argv) {
         {"selective_resampling", [](RunConfig& c) { c.selective = false; }},
         {"kld", [](RunConfig& c) { c.kld = false; }},
         {"beam_subsampling", [](RunConfig& c) { c.subsample = false; }},
+        // Not a skip switch: the random injection flipped against the baseline's setting.
+        {"recovery_flipped", [](RunConfig& c) { c.recovery = !c.recovery; }},
     };
     for (const Variant& v : variants)
       for (std::uint64_t s = 1; s <= switch_seeds; ++s) {
@@ -289,6 +305,7 @@ int main(int argc, char** argv) {
         c.particles = switch_particles;
         c.beams = switch_beams;
         c.kld = true;
+        c.recovery = recovery;
         c.seed = s;
         v.off(c);
         run(c);
@@ -330,7 +347,7 @@ int main(int argc, char** argv) {
                  static_cast<unsigned long long>(c.seed), threads, r.scans, r.updates,
                  r.ms_per_scan, r.update_ms_mean, r.update_ms_p95, r.particles_mean,
                  r.beams_used_mean, r.ate_rmse, r.ate_max, r.heading_rmse_deg, r.pareto ? 1 : 0,
-                 recovery ? 1 : 0);
+                 c.recovery ? 1 : 0);
   std::fclose(f);
 
   if (switches) {

@@ -21,7 +21,7 @@ set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(dirname "$here")
 data="$root/../shared/data"
-out="$root/bench-results/mrpt"
+out="$root/results/bench/mrpt"
 build="$root/build-bench"
 particles="1000 5000"
 beams=90

@@ -3,7 +3,7 @@
 #
 #   bench/run_micro.sh [--out DIR] [--build DIR] [--threads "1 2"] [--quick] [-- <benchmark flags>]
 #
-# --out    results (default: <repo>/bench-results/micro): per binary and thread count a
+# --out    results (default: <repo>/results/bench/micro): per binary and thread count a
 #          console log <bench>_t<T>.txt and CSV(s) (measurement_t<T>.csv, scaling_t<T>.csv,
 #          table_build_t<T>.csv, filter_step_t<T>.csv, primitives_t<T>.csv)
 # --build  CMake build dir (default: <repo>/build-bench; configured and built if needed)
@@ -15,7 +15,7 @@ set -euo pipefail
 
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(dirname "$here")
-out="$root/bench-results/micro"
+out="$root/results/bench/micro"
 build="$root/build-bench"
 thread_list="1 2"
 quick=0

@@ -5,7 +5,7 @@
 #                  [-- <pgmcl_sweep options, e.g. --recovery 0>]
 #
 # --data   shared real logs (default: <repo>/../shared/data); logs missing there are skipped
-# --out    results (default: <repo>/bench-results/sweep): sweep.csv, sweep.png, maps/, *.txt
+# --out    results (default: <repo>/results/bench/sweep): sweep.csv, sweep.png, maps/, *.txt
 # --build  CMake build dir (default: <repo>/build-bench; configured and built if needed)
 # --full   bigger grid (more particles/beams, all fr079 scans, a 200 m simulated floor)
 # --only   comma list of datasets to run (sim-office,intel,aces,fr079,csail[,sim-large])
@@ -22,7 +22,7 @@ set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(dirname "$here")
 data="$root/../shared/data"
-out="$root/bench-results/sweep"
+out="$root/results/bench/sweep"
 build="$root/build-bench"
 threads=1
 full=0

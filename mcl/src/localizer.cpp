@@ -38,7 +38,8 @@ std::vector<std::uint32_t> free_cell_indices(const maps::OccupancyGrid& grid) {
 }
 
 Localizer::Localizer(const maps::OccupancyGrid& grid, const LocalizerConfig& cfg)
-    : Localizer(build_field(grid, cfg), free_cell_indices(grid), cfg) {}
+    // Braces sequence the arguments: the table size check throws before free cells are listed.
+    : Localizer{build_field(grid, cfg), free_cell_indices(grid), cfg} {}
 
 Localizer::Localizer(std::shared_ptr<const maps::LikelihoodField> field,
                      std::vector<std::uint32_t> free_cells, const LocalizerConfig& cfg)

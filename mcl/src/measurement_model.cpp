@@ -23,6 +23,13 @@ inline Rot rotation_of(float theta) noexcept {
 
 // The three kernels share one shape: transform the base-frame endpoint of beam j by the
 // particle pose (in cells), read q, add. Only the lookup differs.
+// Beams per chunk of the two-pass loops below (stack buffers of 2 x 512 bytes).
+constexpr std::size_t kChunk = 128;
+
+// IsotropicView::lookup split in two passes per chunk of beams: pass 1 maps endpoints to
+// cells with no memory access but the beam arrays (the compiler vectorises it), marking
+// off-map endpoints with row -1; pass 2 is the bare byte gather and add. Same cells, same
+// bytes, same sums as calling lookup() per beam, about twice as fast.
 struct IsotropicKernel {
   maps::IsotropicView view;
   const float* ex;
@@ -32,21 +39,39 @@ struct IsotropicKernel {
 
   template <bool kCountBackground>
   std::uint32_t score(float x, float y, float theta, std::uint32_t* background) const noexcept {
+    const maps::IsotropicView v = view;
     const float px = x * inv_res, py = y * inv_res;
     const Rot r = rotation_of(theta);
+    alignas(16) std::int32_t cols[kChunk];
+    alignas(16) std::int32_t rows[kChunk];
     std::uint32_t sum = 0, bg = 0;
-    for (std::size_t j = 0; j < m; ++j) {
-      const float col = px + (r.c * ex[j] - r.s * ey[j]);
-      const float row = py + (r.s * ex[j] + r.c * ey[j]);
-      const std::uint8_t q = view.lookup(col, row);
-      sum += q;
-      if constexpr (kCountBackground) bg += (q == view.background) ? 1u : 0u;
+    for (std::size_t j0 = 0; j0 < m; j0 += kChunk) {
+      const std::size_t len = std::min(kChunk, m - j0);
+      const float* const bx = ex + j0;
+      const float* const by = ey + j0;
+      for (std::size_t k = 0; k < len; ++k) {
+        const int c = maps::floor_to_cell(px + (r.c * bx[k] - r.s * by[k]));
+        const int rr = maps::floor_to_cell(py + (r.s * bx[k] + r.c * by[k]));
+        const bool inside = (c >= 0) & (c < v.width) & (rr >= 0) & (rr < v.height);
+        cols[k] = c;
+        rows[k] = inside ? rr : -1;
+      }
+      for (std::size_t k = 0; k < len; ++k) {
+        const std::uint8_t q =
+            rows[k] >= 0
+                ? v.q[static_cast<std::size_t>(rows[k]) * static_cast<std::size_t>(v.width) +
+                      static_cast<std::size_t>(cols[k])]
+                : v.background;
+        sum += q;
+        if constexpr (kCountBackground) bg += (q == v.background) ? 1u : 0u;
+      }
     }
     if constexpr (kCountBackground) *background = bg;
     return sum;
   }
 };
 
+// OrientedView::lookup in the same two passes; the plane index is computed in pass 1.
 struct OrientedKernel {
   maps::OrientedView view;
   const float* ex;
@@ -57,30 +82,55 @@ struct OrientedKernel {
 
   template <bool kCountBackground>
   std::uint32_t score(float x, float y, float theta, std::uint32_t* background) const noexcept {
+    const maps::OrientedView v = view;
     const float px = x * inv_res, py = y * inv_res;
     const Rot r = rotation_of(theta);
-    const int bins = view.bins;
+    const int bins = v.bins;
     const auto period = static_cast<float>(bins);
     // theta in (-pi, pi] -> [0, bins]; plus bin[j] in [0, bins) gives [0, 2 bins]:
     // two conditional subtractions bring any of those back to [0, bins).
-    float tb = theta * view.bins_per_radian;
+    float tb = theta * v.bins_per_radian;
     tb += (tb < 0.0f) ? period : 0.0f;
+    alignas(16) std::int32_t cols[kChunk];
+    alignas(16) std::int32_t rows[kChunk];
+    alignas(16) std::int32_t planes[kChunk];
     std::uint32_t sum = 0, bg = 0;
-    for (std::size_t j = 0; j < m; ++j) {
-      const float col = px + (r.c * ex[j] - r.s * ey[j]);
-      const float row = py + (r.s * ex[j] + r.c * ey[j]);
-      int b = static_cast<int>(tb + bin[j]);
-      b = b >= bins ? b - bins : b;
-      b = b >= bins ? b - bins : b;
-      const std::uint8_t q = view.lookup(col, row, b);
-      sum += q;
-      if constexpr (kCountBackground) bg += (q == view.background) ? 1u : 0u;
+    for (std::size_t j0 = 0; j0 < m; j0 += kChunk) {
+      const std::size_t len = std::min(kChunk, m - j0);
+      const float* const bx = ex + j0;
+      const float* const by = ey + j0;
+      const float* const bb = bin + j0;
+      for (std::size_t k = 0; k < len; ++k) {
+        const int c = maps::floor_to_cell(px + (r.c * bx[k] - r.s * by[k]));
+        const int rr = maps::floor_to_cell(py + (r.s * bx[k] + r.c * by[k]));
+        int b = static_cast<int>(tb + bb[k]);
+        b = b >= bins ? b - bins : b;
+        b = b >= bins ? b - bins : b;
+        const bool inside = (c >= 0) & (c < v.width) & (rr >= 0) & (rr < v.height);
+        cols[k] = c;
+        rows[k] = inside ? rr : -1;
+        planes[k] = b;
+      }
+      for (std::size_t k = 0; k < len; ++k) {
+        const std::uint8_t q =
+            rows[k] >= 0
+                ? v.q[static_cast<std::size_t>(planes[k]) * v.plane_stride +
+                      static_cast<std::size_t>(rows[k]) * static_cast<std::size_t>(v.width) +
+                      static_cast<std::size_t>(cols[k])]
+                : v.background;
+        sum += q;
+        if constexpr (kCountBackground) bg += (q == v.background) ? 1u : 0u;
+      }
     }
     if constexpr (kCountBackground) *background = bg;
     return sum;
   }
 };
 
+// OffsetView::lookup in four passes per chunk: (1) endpoints and beam directions in the
+// grid frame, cells marked off-map (vectorised); (2) gather the offset to the nearest
+// obstacle; (3) squared Mahalanobis distance -> LUT index (vectorised); (4) gather the LUT.
+// The arithmetic is the view's, term for term, so the bytes read are the same.
 struct OffsetKernel {
   maps::OffsetView view;
   const float* ex;
@@ -92,17 +142,58 @@ struct OffsetKernel {
 
   template <bool kCountBackground>
   std::uint32_t score(float x, float y, float theta, std::uint32_t* background) const noexcept {
+    const maps::OffsetView v = view;
     const float px = x * inv_res, py = y * inv_res;
     const Rot r = rotation_of(theta);
+    alignas(16) float colf[kChunk], rowf[kChunk], dirx[kChunk], diry[kChunk];
+    alignas(16) std::int32_t cols[kChunk], rows[kChunk], dcs[kChunk], drs[kChunk];
+    alignas(16) std::int32_t lut_idx[kChunk];
+    const float lut_last = static_cast<float>(v.lut_size - 1);
     std::uint32_t sum = 0, bg = 0;
-    for (std::size_t j = 0; j < m; ++j) {
-      const float col = px + (r.c * ex[j] - r.s * ey[j]);
-      const float row = py + (r.s * ex[j] + r.c * ey[j]);
-      const float dx = r.c * ux[j] - r.s * uy[j];
-      const float dy = r.s * ux[j] + r.c * uy[j];
-      const std::uint8_t q = view.lookup(col, row, dx, dy);
-      sum += q;
-      if constexpr (kCountBackground) bg += (q == view.background) ? 1u : 0u;
+    for (std::size_t j0 = 0; j0 < m; j0 += kChunk) {
+      const std::size_t len = std::min(kChunk, m - j0);
+      const float* const bx = ex + j0;
+      const float* const by = ey + j0;
+      const float* const bux = ux + j0;
+      const float* const buy = uy + j0;
+      for (std::size_t k = 0; k < len; ++k) {
+        const float col = px + (r.c * bx[k] - r.s * by[k]);
+        const float row = py + (r.s * bx[k] + r.c * by[k]);
+        const int c = maps::floor_to_cell(col), rr = maps::floor_to_cell(row);
+        const bool inside = (c >= 0) & (c < v.width) & (rr >= 0) & (rr < v.height);
+        colf[k] = col;
+        rowf[k] = row;
+        cols[k] = c;
+        rows[k] = inside ? rr : -1;
+        dirx[k] = r.c * bux[k] - r.s * buy[k];
+        diry[k] = r.s * bux[k] + r.c * buy[k];
+      }
+      for (std::size_t k = 0; k < len; ++k) {
+        dcs[k] = maps::OffsetView::kNoObstacle;
+        drs[k] = 0;
+        if (rows[k] < 0) continue;
+        const std::size_t i =
+            2 * (static_cast<std::size_t>(rows[k]) * static_cast<std::size_t>(v.width) +
+                 static_cast<std::size_t>(cols[k]));
+        dcs[k] = v.off[i];
+        drs[k] = v.off[i + 1];
+      }
+      for (std::size_t k = 0; k < len; ++k) {
+        // Vector from the endpoint to the obstacle cell's centre, in cells.
+        const float dx = static_cast<float>(cols[k] + dcs[k]) + 0.5f - colf[k];
+        const float dy = static_cast<float>(rows[k] + drs[k]) + 0.5f - rowf[k];
+        const float along = dx * dirx[k] + dy * diry[k];
+        const float across = dy * dirx[k] - dx * diry[k];
+        const float m2 = along * along * v.inv_var_along + across * across * v.inv_var_across;
+        const float idx = m2 * v.lut_steps_per_unit;
+        const int li = idx < lut_last ? static_cast<int>(idx) : v.lut_size - 1;
+        lut_idx[k] = dcs[k] == maps::OffsetView::kNoObstacle ? -1 : li;
+      }
+      for (std::size_t k = 0; k < len; ++k) {
+        const std::uint8_t q = lut_idx[k] >= 0 ? v.lut[lut_idx[k]] : v.background;
+        sum += q;
+        if constexpr (kCountBackground) bg += (q == v.background) ? 1u : 0u;
+      }
     }
     if constexpr (kCountBackground) *background = bg;
     return sum;

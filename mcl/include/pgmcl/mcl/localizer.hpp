@@ -66,7 +66,9 @@ class Localizer {
 
   /// Re-initialises around `mean` (global frame) with covariance `cov` (x, y, theta;
   /// global frame; symmetric PSD, else std::invalid_argument): filter.particles samples
-  /// from the Gaussian, headings wrapped. Forces the next measurement update.
+  /// from the Gaussian, headings wrapped. Forces the next measurement update. The pose is
+  /// the robot's at the filter's current time (the last update's odometry pose): the next
+  /// update() applies the odometry since then. Also resets the augmented-MCL averages.
   void set_pose(const Pose2& mean, const Eigen::Matrix3d& cov);
   /// Re-initialises uniformly over the free cells (uniform heading) with
   /// filter.global_particles particles. Forces the next measurement update.

@@ -148,7 +148,9 @@ LikelihoodField::LikelihoodField(const OccupancyGrid& grid, const BeamLikelihood
   background_ = quantise_m2(std::numeric_limits<double>::infinity());
 
   const double reach_m = options.reach_sigmas * std::max(sa, sc);
-  stats_.reach_cells = static_cast<int>(std::ceil(reach_m / res - 1e-9));
+  // Clamped before the cast (a reach beyond int range is UB), so the check below reports it.
+  stats_.reach_cells =
+      static_cast<int>(std::min(std::ceil(reach_m / res - 1e-9), kMaxStampReach + 1.0));
   stats_.reach_cells = std::max(stats_.reach_cells, 1);
   const int reach = stats_.reach_cells;
   require(reach <= kMaxStampReach, "the kernel reach of " + std::to_string(reach) +

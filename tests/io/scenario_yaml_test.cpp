@@ -1,0 +1,459 @@
+// The scenario YAML adapter: every field reaches sims::Scenario, absent keys keep the
+// structs' defaults, relative paths resolve against the YAML's folder, and every kind of
+// bad input throws ScenarioError naming file, line and key.
+
+#include "pgmcl/io/scenario_yaml.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+#include "io_test_util.hpp"
+#include "pgmcl/maps/map_io.hpp"
+
+namespace pgmcl::io {
+namespace {
+
+namespace fs = std::filesystem;
+using test::ScratchDir;
+
+void write_text(const std::string& path, const std::string& text) {
+  fs::create_directories(fs::path(path).parent_path());
+  std::ofstream(path) << text;
+}
+
+/// A 4 x 3 m room at 10 cm (walls on the border), saved as <dir>/maps/room.yaml.
+maps::OccupancyGrid room() {
+  maps::OccupancyGrid g(40, 30, 0.1, Pose2{-1.0, -0.5, 0.0}, maps::kFree);
+  for (int c = 0; c < g.width(); ++c) {
+    g.set(c, 0, maps::kOccupied);
+    g.set(c, g.height() - 1, maps::kOccupied);
+  }
+  for (int r = 0; r < g.height(); ++r) {
+    g.set(0, r, maps::kOccupied);
+    g.set(g.width() - 1, r, maps::kOccupied);
+  }
+  return g;
+}
+
+class ScenarioYaml : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    fs::create_directories(fs::path(dir_.file("maps")));
+    maps::save_map(room(), dir_.file("maps/room.yaml"));
+  }
+  /// Writes `body` (after a `map:` line pointing at the room) to scen/s.yaml.
+  std::string scenario(const std::string& body, bool with_map = true) {
+    const std::string path = dir_.file("scen/s.yaml");
+    write_text(path, (with_map ? "map: ../maps/room.yaml\n" : "") + body);
+    return path;
+  }
+  /// Loads `body` and returns the error; fails the test if it loads.
+  ScenarioError error(const std::string& body, bool with_map = true) {
+    const std::string path = scenario(body, with_map);
+    try {
+      maps::OccupancyGrid map;
+      (void)read_scenario_file(path, map);
+    } catch (const ScenarioError& e) {
+      EXPECT_EQ(e.file(), path);
+      return e;
+    }
+    ADD_FAILURE() << "no ScenarioError for:\n" << body;
+    return ScenarioError(path, 0, "", "");
+  }
+  ScratchDir dir_;
+};
+
+TEST_F(ScenarioYaml, MinimalFileKeepsEveryDefault) {
+  maps::OccupancyGrid map;
+  const ScenarioFile f = read_scenario_file(scenario("robot: {motion: stationary}\n"), map);
+  EXPECT_EQ(map.width(), 40);
+  EXPECT_EQ(f.name, "s");
+  EXPECT_EQ(fs::path(f.map_path), fs::path(dir_.file("maps/room.yaml")).lexically_normal());
+  EXPECT_TRUE(f.filter_yaml.empty());
+  const sims::Scenario d;
+  const sims::Scenario& s = f.scenario;
+  EXPECT_EQ(s.sensor.name, d.sensor.name);
+  EXPECT_EQ(s.sensor.beam_count, d.sensor.beam_count);
+  EXPECT_EQ(s.seed, d.seed);
+  EXPECT_EQ(s.duration, d.duration);
+  EXPECT_EQ(s.scan_rate, d.scan_rate);
+  EXPECT_EQ(s.control_rate, d.control_rate);
+  EXPECT_EQ(s.noise.sigma_y, d.noise.sigma_y);
+  EXPECT_EQ(s.noise.dropouts.enabled, d.noise.dropouts.enabled);
+  EXPECT_EQ(s.surfaces.materials.size(), d.surfaces.materials.size());
+  EXPECT_EQ(s.surfaces.default_material, d.surfaces.default_material);
+  EXPECT_EQ(s.odometry.alphas.a3, d.odometry.alphas.a3);
+  EXPECT_FALSE(s.odometry.origin.has_value());
+  EXPECT_EQ(s.limits.max_v, d.limits.max_v);
+  EXPECT_EQ(s.random_walk.max_leg, d.random_walk.max_leg);
+  EXPECT_TRUE(s.kidnaps.empty());
+  EXPECT_TRUE(s.discs.empty());
+}
+
+TEST_F(ScenarioYaml, EveryFieldReachesTheStruct) {
+  // Label image: same size as the map, pixel value = palette index (2 = cardboard_box).
+  maps::OccupancyGrid labels(40, 30, 0.1, Pose2{-1.0, -0.5, 0.0}, maps::kUnknown);
+  fs::create_directories(dir_.file("scen"));
+  save_map_image(labels, dir_.file("scen/labels.pgm"));  // 205 everywhere: no label
+  const std::string body = R"(name: full
+description: every key
+seed: 1234
+duration: 7.5
+scan_rate: 12.5
+control_rate: 25
+sensor:
+  profile: sick_lms_1deg
+  angle_min: -1.5
+  angle_increment: 0.02
+  beam_count: 151
+  range_min: 0.05
+  range_max: 20
+  scan_rate: 30
+  scan_time: 0.02
+  mount: [0.2, -0.1, 0.05]
+noise:
+  preset: none
+  along_beam: true
+  range_growth: 0.001
+  across_beam: true
+  sigma_y: 0.004
+  quantum: 0.001
+  dropouts: {enabled: true, rate: 0.02}
+  short_returns: {enabled: true, rate: 0.03, lambda: 0.7}
+  specular: {enabled: true, rate: 0.4, min_incidence: 0.6}
+raycast: {unknown: block}
+surfaces:
+  default: fabric
+  materials:
+    - {name: fabric, sigma_normal: 0.004, sigma_45: 0.005, grazing_limit: 1.2, specular: true}
+    - {name: glass, sigma_normal: 0.01, sigma_45: 0.02}
+  labels: labels.pgm
+  regions:
+    - {material: glass, min: [0.0, 0.0], max: [1.0, 0.5]}
+obstacles:
+  discs:
+    - {radius: 0.3, material: glass, path: {waypoints: [[0.5, 0.5], [1.5, 0.5]], speed: 0.7, start_offset: 0.2}}
+  boxes:
+    - half_length: 0.4
+      half_width: 0.2
+      yaw: 0.3
+      material: white_paper
+      path: {waypoints: [[2.0, 1.5]], speed: 0}
+robot:
+  start: [0.5, 1.0, 0.25]
+  motion: random_walk
+  limits: {max_v: 0.8, max_omega: 1.5}
+  waypoints:
+    points: [[1.0, 1.0], [2.0, 1.5]]
+    controller: turn_then_drive
+    lookahead: 0.4
+    goal_tolerance: 0.06
+    heading_tolerance: 0.07
+    loop: true
+  random_walk: {clearance: 0.25, goal_tolerance: 0.08, min_leg: 0.6, max_leg: 2.0, max_retries: 20}
+odometry:
+  random_noise: false
+  model: omnidirectional
+  alphas: {a1: 0.1, a2: 0.2, a3: 0.3, a4: 0.4, a5: 0.5}
+  wheel_radius_bias: 0.01
+  wheelbase_bias: -0.02
+  yaw_drift_per_metre: 0.003
+  origin: [10, 20, 1.0]
+kidnaps:
+  - {time: 3.0, pose: [2.0, 1.0, -1.0]}
+filter:
+  particles: 500
+)";
+  maps::OccupancyGrid map;
+  const ScenarioFile f = read_scenario_file(scenario(body), map);
+  EXPECT_EQ(f.name, "full");
+  EXPECT_EQ(f.description, "every key");
+  const sims::Scenario& s = f.scenario;
+  EXPECT_EQ(s.seed, 1234U);
+  EXPECT_EQ(s.duration, 7.5);
+  EXPECT_EQ(s.scan_rate, 12.5);
+  EXPECT_EQ(s.control_rate, 25.0);
+  EXPECT_EQ(s.sensor.name, "sick_lms_1deg");
+  EXPECT_EQ(s.sensor.angle_min, -1.5);
+  EXPECT_EQ(s.sensor.angle_increment, 0.02);
+  EXPECT_EQ(s.sensor.beam_count, 151);
+  EXPECT_EQ(s.sensor.range_min, 0.05);
+  EXPECT_EQ(s.sensor.range_max, 20.0);
+  EXPECT_EQ(s.sensor.scan_rate, 30.0);
+  EXPECT_EQ(s.sensor.scan_time, 0.02);
+  EXPECT_TRUE(test::same_pose(s.sensor_mount, Pose2{0.2, -0.1, 0.05}));
+  EXPECT_TRUE(s.noise.along_beam);
+  EXPECT_EQ(s.noise.range_growth, 0.001);
+  EXPECT_TRUE(s.noise.across_beam);
+  EXPECT_EQ(s.noise.sigma_y, 0.004);
+  EXPECT_EQ(s.noise.quantum, 0.001);
+  EXPECT_TRUE(s.noise.dropouts.enabled);
+  EXPECT_EQ(s.noise.dropouts.rate, 0.02);
+  EXPECT_TRUE(s.noise.short_returns.enabled);
+  EXPECT_EQ(s.noise.short_returns.rate, 0.03);
+  EXPECT_EQ(s.noise.short_returns.lambda, 0.7);
+  EXPECT_TRUE(s.noise.specular.enabled);
+  EXPECT_EQ(s.noise.specular.rate, 0.4);
+  EXPECT_EQ(s.noise.specular.min_incidence, 0.6);
+  EXPECT_EQ(s.raycast.unknown, sims::UnknownCellPolicy::kBlock);
+  // Palette: the seven defaults, fabric modified in place, glass appended.
+  ASSERT_EQ(s.surfaces.materials.size(), sims::default_materials().size() + 1);
+  const sims::SurfaceMaterial& fabric = s.surfaces.materials[3];
+  EXPECT_EQ(fabric.name, "fabric");
+  EXPECT_EQ(fabric.sigma.sigma_normal, 0.004);
+  EXPECT_EQ(fabric.sigma.sigma_45, 0.005);
+  EXPECT_EQ(fabric.sigma.grazing_limit, 1.2);
+  EXPECT_TRUE(fabric.specular);
+  EXPECT_EQ(s.surfaces.materials.back().name, "glass");
+  EXPECT_EQ(s.surfaces.materials.back().sigma.sigma_45, 0.02);
+  EXPECT_FALSE(s.surfaces.materials.back().specular);
+  EXPECT_EQ(s.surfaces.default_material, "fabric");
+  ASSERT_EQ(s.surfaces.labels.size(), map.size());
+  EXPECT_EQ(s.surfaces.labels.front(), sims::SurfaceLayout::kNoLabel);
+  ASSERT_EQ(s.surfaces.regions.size(), 1U);
+  EXPECT_EQ(s.surfaces.regions[0].material, "glass");
+  EXPECT_EQ(s.surfaces.regions[0].x_max, 1.0);
+  EXPECT_EQ(s.surfaces.regions[0].y_max, 0.5);
+  ASSERT_EQ(s.discs.size(), 1U);
+  EXPECT_EQ(s.discs[0].radius, 0.3);
+  EXPECT_EQ(s.discs[0].material, "glass");
+  ASSERT_EQ(s.discs[0].path.waypoints.size(), 2U);
+  EXPECT_EQ(s.discs[0].path.waypoints[1].x, 1.5);
+  EXPECT_EQ(s.discs[0].path.speed, 0.7);
+  EXPECT_EQ(s.discs[0].path.start_offset, 0.2);
+  ASSERT_EQ(s.boxes.size(), 1U);
+  EXPECT_EQ(s.boxes[0].half_length, 0.4);
+  EXPECT_EQ(s.boxes[0].half_width, 0.2);
+  EXPECT_EQ(s.boxes[0].yaw, 0.3);
+  EXPECT_EQ(s.boxes[0].material, "white_paper");
+  EXPECT_EQ(s.boxes[0].path.speed, 0.0);
+  EXPECT_TRUE(test::same_pose(s.start, Pose2{0.5, 1.0, 0.25}));
+  EXPECT_EQ(s.motion, sims::MotionMode::kRandomWalk);
+  EXPECT_EQ(s.limits.max_v, 0.8);
+  EXPECT_EQ(s.limits.max_omega, 1.5);
+  ASSERT_EQ(s.waypoints.waypoints.size(), 2U);
+  EXPECT_EQ(s.waypoints.waypoints[1].y, 1.5);
+  EXPECT_EQ(s.waypoints.controller, sims::Controller::kTurnThenDrive);
+  EXPECT_EQ(s.waypoints.lookahead, 0.4);
+  EXPECT_EQ(s.waypoints.goal_tolerance, 0.06);
+  EXPECT_EQ(s.waypoints.heading_tolerance, 0.07);
+  EXPECT_TRUE(s.waypoints.loop);
+  EXPECT_EQ(s.random_walk.clearance, 0.25);
+  EXPECT_EQ(s.random_walk.goal_tolerance, 0.08);
+  EXPECT_EQ(s.random_walk.min_leg, 0.6);
+  EXPECT_EQ(s.random_walk.max_leg, 2.0);
+  EXPECT_EQ(s.random_walk.max_retries, 20);
+  EXPECT_FALSE(s.odometry.random_noise);
+  EXPECT_EQ(s.odometry.kind, MotionModelKind::kOmnidirectional);
+  EXPECT_EQ(s.odometry.alphas.a1, 0.1);
+  EXPECT_EQ(s.odometry.alphas.a5, 0.5);
+  EXPECT_EQ(s.odometry.wheel_radius_bias, 0.01);
+  EXPECT_EQ(s.odometry.wheelbase_bias, -0.02);
+  EXPECT_EQ(s.odometry.yaw_drift_per_metre, 0.003);
+  ASSERT_TRUE(s.odometry.origin.has_value());
+  EXPECT_TRUE(test::same_pose(*s.odometry.origin, Pose2{10.0, 20.0, 1.0}));
+  ASSERT_EQ(s.kidnaps.size(), 1U);
+  EXPECT_EQ(s.kidnaps[0].time, 3.0);
+  EXPECT_TRUE(test::same_pose(s.kidnaps[0].pose, Pose2{2.0, 1.0, -1.0}));
+  EXPECT_NE(f.filter_yaml.find("particles: 500"), std::string::npos);
+  // The line of "particles: 500" (1-based, after the "map:" line scenario() puts first).
+  const auto at = body.find("  particles: 500");
+  EXPECT_EQ(f.filter_line,
+            2 + static_cast<std::size_t>(std::count(body.begin(), body.begin() + at, '\n')));
+}
+
+TEST_F(ScenarioYaml, LabelImagePixelsArePaletteIndices) {
+  // Raw pixel values (save_map_image would write trinary shades).
+  std::string pgm = "P5\n40 30\n255\n";
+  std::string pixels(40 * 30, static_cast<char>(255));
+  pixels[0] = 2;            // top-left pixel = grid row 29, col 0
+  pixels[40 * 29 + 5] = 6;  // bottom row, col 5
+  write_text(dir_.file("scen/lab.pgm"), pgm + pixels);
+  maps::OccupancyGrid map;
+  const ScenarioFile f = read_scenario_file(
+      scenario("surfaces: {labels: lab.pgm}\nrobot: {motion: stationary}\n"), map);
+  const auto& l = f.scenario.surfaces.labels;
+  ASSERT_EQ(l.size(), map.size());
+  EXPECT_EQ(l[map.index(0, 29)], 2);
+  EXPECT_EQ(l[map.index(5, 0)], 6);
+  EXPECT_EQ(l[map.index(1, 1)], sims::SurfaceLayout::kNoLabel);
+}
+
+TEST_F(ScenarioYaml, ShippedScenariosLoadAndValidate) {
+  const fs::path dir = fs::path(PGMCL_SOURCE_DIR) / "configs" / "scenarios";
+  std::size_t n = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    if (entry.path().extension() != ".yaml") continue;
+    SCOPED_TRACE(entry.path().string());
+    maps::OccupancyGrid map;
+    const ScenarioFile f = read_scenario_file(entry.path().string(), map);
+    EXPECT_FALSE(map.empty());
+    EXPECT_EQ(f.name, entry.path().stem().string());
+    EXPECT_FALSE(f.description.empty());
+    ++n;
+  }
+  EXPECT_GE(n, 5U);
+}
+
+// ---- errors: file, line and key ---------------------------------------------------------
+
+TEST_F(ScenarioYaml, UnknownKeysAreReportedWithTheirLine) {
+  ScenarioError e = error("seed: 3\nduraton: 5\n");
+  EXPECT_EQ(e.field(), "duraton");
+  EXPECT_EQ(e.line(), 3U);
+  EXPECT_NE(std::string(e.what()).find("unknown key"), std::string::npos);
+
+  e = error("robot:\n  motion: waypoints\n  waypoints:\n    points: [[1, 1]]\n    lookahed: 1\n");
+  EXPECT_EQ(e.field(), "robot.waypoints.lookahed");
+  EXPECT_EQ(e.line(), 6U);
+
+  e = error(
+      "obstacles:\n  discs:\n    - {radius: 0.2, path: {waypoints: [[1, 1]]}, colour: red}\n");
+  EXPECT_EQ(e.field(), "obstacles.discs[0].colour");
+  EXPECT_EQ(e.line(), 4U);
+}
+
+TEST_F(ScenarioYaml, WrongTypesNameTheKey) {
+  ScenarioError e = error("duration: fast\n");
+  EXPECT_EQ(e.field(), "duration");
+  EXPECT_EQ(e.line(), 2U);
+  EXPECT_NE(e.message().find("expected a number"), std::string::npos);
+
+  e = error("seed: -3\n");
+  EXPECT_EQ(e.field(), "seed");
+
+  e = error("sensor:\n  beam_count: 10.5\n");
+  EXPECT_EQ(e.field(), "sensor.beam_count");
+  EXPECT_EQ(e.line(), 3U);
+
+  e = error("robot:\n  start: [1, 2]\n");
+  EXPECT_EQ(e.field(), "robot.start");
+  EXPECT_NE(e.message().find("[x, y, theta]"), std::string::npos);
+
+  e = error("robot:\n  waypoints:\n    points:\n      - [1, 1]\n      - [2, two]\n");
+  EXPECT_EQ(e.field(), "robot.waypoints.points[1][1]");
+  EXPECT_EQ(e.line(), 6U);
+
+  e = error("noise:\n  dropouts: {enabled: maybe}\n");
+  EXPECT_EQ(e.field(), "noise.dropouts.enabled");
+
+  e = error("robot: [1, 2]\n");
+  EXPECT_EQ(e.field(), "robot");
+  EXPECT_NE(e.message().find("mapping"), std::string::npos);
+
+  e = error("kidnaps: {time: 1}\n");
+  EXPECT_EQ(e.field(), "kidnaps");
+}
+
+TEST_F(ScenarioYaml, BadNamesListTheChoices) {
+  ScenarioError e = error("robot: {motion: fly}\n");
+  EXPECT_EQ(e.field(), "robot.motion");
+  EXPECT_NE(e.message().find("random_walk"), std::string::npos);
+
+  e = error("sensor: {profile: lidar9000}\n");
+  EXPECT_EQ(e.field(), "sensor.profile");
+  EXPECT_NE(e.message().find("hokuyo_utm30lx"), std::string::npos);
+
+  e = error("raycast: {unknown: maybe}\n");
+  EXPECT_EQ(e.field(), "raycast.unknown");
+}
+
+TEST_F(ScenarioYaml, SyntaxDuplicatesAndMissingKeys) {
+  ScenarioError e = error("seed: [1, 2\n");
+  EXPECT_EQ(e.field(), "yaml");
+  EXPECT_GE(e.line(), 2U);
+
+  e = error("seed: 1\nseed: 2\n");
+  EXPECT_EQ(e.field(), "seed");
+  EXPECT_EQ(e.line(), 3U);
+  EXPECT_NE(e.message().find("duplicate"), std::string::npos);
+
+  e = error("seed: 1\n", /*with_map=*/false);
+  EXPECT_EQ(e.field(), "map");
+  EXPECT_NE(e.message().find("missing"), std::string::npos);
+
+  e = error("kidnaps:\n  - {pose: [1, 1, 0]}\n");
+  EXPECT_EQ(e.field(), "kidnaps[0].time");
+  EXPECT_EQ(e.line(), 3U);
+}
+
+TEST_F(ScenarioYaml, MapProblemsPointAtTheMapKey) {
+  const ScenarioError e = error("seed: 1\nmap: ../maps/nowhere.yaml\n", /*with_map=*/false);
+  EXPECT_EQ(e.field(), "map");
+  EXPECT_EQ(e.line(), 2U);
+  EXPECT_NE(e.message().find("nowhere.yaml"), std::string::npos);
+}
+
+TEST_F(ScenarioYaml, ChecksAgainstTheMapAreReportedAtTheirKey) {
+  // The room spans x in [-1, 3], y in [-0.5, 2.5].
+  ScenarioError e = error("robot:\n  motion: stationary\n  start: [10, 1, 0]\n");
+  EXPECT_EQ(e.field(), "robot.start");
+  EXPECT_EQ(e.line(), 4U);
+  EXPECT_NE(e.message().find("inside the map"), std::string::npos);
+
+  e = error(
+      "robot: {motion: stationary}\nkidnaps:\n  - {time: 1, pose: [1, 1, 0]}\n"
+      "  - {time: 2, pose: [1, 9, 0]}\n");
+  EXPECT_EQ(e.field(), "kidnaps[1].pose");
+  EXPECT_EQ(e.line(), 5U);
+
+  e = error(
+      "robot: {motion: stationary}\nsurfaces:\n  regions:\n"
+      "    - {material: marble, min: [0, 0], max: [1, 1]}\n");
+  EXPECT_EQ(e.field(), "surfaces.regions[0].material");
+  EXPECT_EQ(e.line(), 5U);
+  EXPECT_NE(e.message().find("marble"), std::string::npos);
+
+  e = error(
+      "robot: {motion: stationary}\nobstacles:\n  boxes:\n"
+      "    - {material: marble, path: {waypoints: [[1, 1]]}}\n");
+  EXPECT_EQ(e.field(), "obstacles.boxes[0].material");
+
+  e = error("robot:\n  motion: stationary\n  limits: {max_v: 0}\n");
+  EXPECT_EQ(e.field(), "robot.limits.max_v");
+  EXPECT_EQ(e.line(), 4U);
+}
+
+TEST_F(ScenarioYaml, StructChecksAreReportedAtTheirMapping) {
+  ScenarioError e = error("sensor:\n  range_min: 5\n  range_max: 1\n");
+  EXPECT_EQ(e.field(), "sensor");
+  EXPECT_EQ(e.line(), 3U);
+
+  e = error("noise:\n  dropouts: {rate: 1.5}\n");
+  EXPECT_EQ(e.field(), "noise");
+
+  e = error("surfaces:\n  materials:\n    - {name: odd, sigma_normal: 0.01, sigma_45: 0.001}\n");
+  EXPECT_EQ(e.field(), "surfaces.materials[0]");
+  EXPECT_EQ(e.line(), 4U);
+
+  e = error("obstacles:\n  discs:\n    - {radius: 0.2, path: {waypoints: [[1, 1]], speed: -1}}\n");
+  EXPECT_EQ(e.field(), "obstacles.discs[0].path");
+}
+
+TEST_F(ScenarioYaml, ErrorIsAFormatErrorWithFileLineKeyInWhat) {
+  const std::string path = scenario("duration: [1]\n");
+  try {
+    (void)load_scenario(path);
+    FAIL() << "no error";
+  } catch (const FormatError& e) {
+    EXPECT_EQ(std::string(e.what()), path + ":2: duration: expected a number, got a list");
+  }
+}
+
+TEST_F(ScenarioYaml, LoadScenarioHandsOutTheMap) {
+  maps::OccupancyGrid map;
+  const sims::Scenario s =
+      load_scenario(scenario("seed: 77\nrobot: {motion: stationary, start: [1, 1, 0]}\n"), &map);
+  EXPECT_EQ(s.seed, 77U);
+  EXPECT_EQ(map.width(), 40);
+  EXPECT_EQ(map.height(), 30);
+  EXPECT_DOUBLE_EQ(map.origin().x, -1.0);
+}
+
+}  // namespace
+}  // namespace pgmcl::io

@@ -14,6 +14,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -332,6 +333,30 @@ TEST(StressLikelihood, UtmOriginChangesNoTableByte) {
   }
   EXPECT_EQ(b.origin().x, 5e5);
   EXPECT_EQ(b.origin().y, 5e6);
+}
+
+// Regression (found by fuzz_config_yaml, reported): a kernel reach beyond int range was cast
+// to int before the "reach exceeds" check (UB; on x86 it became INT_MIN, clamped to 1), so
+// absurd sigmas built a table with a 1-cell reach instead of failing. Every such parameter
+// set must be a clear std::invalid_argument. (Under UBSan the old code aborts here.)
+TEST(StressLikelihood, AbsurdSigmasAreAClearErrorNotAOneCellReach) {
+  const maps::OccupancyGrid g(40, 30, 0.05, {}, maps::kFree);
+  for (const auto& [along, mismatch, reach] :
+       {std::tuple{1e8, 0.0, 4.0}, std::tuple{1e300, 0.0, 4.0}, std::tuple{0.01, 1e300, 4.0},
+        std::tuple{0.01, 0.0, 1e300}, std::tuple{1e200, 0.0, 1e200}}) {
+    maps::BeamLikelihoodParams p;
+    p.sigma_along = along;
+    p.model_mismatch = mismatch;
+    LikelihoodFieldOptions o;
+    o.reach_sigmas = reach;
+    try {
+      const LikelihoodField f(g, p, o);
+      ADD_FAILURE() << "sigma_along " << along << ", mismatch " << mismatch << ", reach_sigmas "
+                    << reach << ": built with a reach of " << f.stats().reach_cells << " cells";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("reach"), std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace

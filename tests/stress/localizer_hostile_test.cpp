@@ -239,6 +239,36 @@ TEST(StressTimeAndMotion, TimestampsGoingBackwards) {
   }
 }
 
+// Regression (reported): odometry garbage that is finite but absurd (1e30 m, as from a
+// corrupted log) throws the particles to coordinates beyond int range in cells; the hot
+// loop's floor_to_cell then casts them to int (UB, caught by UBSan in the Debug build).
+// Wanted: every beam reads the background (off the map), nothing NaN, and recovery once the
+// odometry is sane again.
+TEST(StressTimeAndMotion, OdometryGarbageOf1e30m) {
+  Lap lap;
+  lap.truncate(110);
+  constexpr std::size_t kGlitch = 30;
+  lap.odom[kGlitch] = Pose2{1e30, -1e30, 0.0}.compose(lap.odom[kGlitch]);
+  Localizer loc(lap.room.grid, LocalizerConfig{});
+  loc.set_pose(lap.truth[0], diag_cov(0.05, 2 * kDeg));
+  std::vector<UpdateResult> after;
+  const RunErrors e = drive(loc, lap.scanner, lap.room.grid, lap.truth, lap.odom, 4, 90,
+                            on_scan([&](std::size_t k, LaserScan&) {
+                              if (k > kGlitch && k <= kGlitch + 40) {
+                                after.push_back(loc.last_result());
+                              }
+                            }));
+  EXPECT_TRUE(e.all_finite);
+  EXPECT_TRUE(after.front().measured);
+  EXPECT_EQ(after.front().beams_background, after.front().beams_used);
+  std::size_t injected = 0;
+  for (const UpdateResult& r : after) injected += r.injected;
+  EXPECT_GT(injected, 0u);
+  std::cout << "  error after the glitch " << e.xy[kGlitch] << " m, final " << e.xy.back()
+            << " m\n";
+  EXPECT_LT(e.rmse_xy, 0.1);
+}
+
 // A scan whose beam count disagrees with the configured sensor (expected_beams = 1081) is a
 // clear std::invalid_argument naming both counts, with the filter state untouched; with
 // expected_beams = 0 any count is scored (none: kNoValidBeams).

@@ -274,5 +274,32 @@ TEST(StressExtremes, OversizedMapFailsBeforeCollectingFreeCells) {
       ::testing::ExitedWithCode(0), "");
 }
 
+// Regression (found by fuzz_config_yaml, reported): LocalizerConfig::validate() accepts any
+// finite motion noise; with alphas of 1e300 one motion update overflows every particle to
+// Inf/NaN and the estimate is NaN. A config must either be rejected (std::invalid_argument)
+// or keep every result finite. 1e10 and 1e30 are absurd too, but stay finite.
+TEST(StressExtremes, AbsurdMotionNoiseIsRejectedOrStaysFinite) {
+  const Room room = make_room(4.0, 3.0, 0.05);
+  const Scanner scanner(room.grid);
+  Rng rng(3);
+  const LaserScan scan = scanner.scan({1.5, 1.5, 0.0}, rng);
+  for (const double a : {1e10, 1e30, 1e300}) {
+    LocalizerConfig cfg;
+    cfg.motion.noise.a1 = cfg.motion.noise.a3 = a;
+    cfg.filter.global_particles = 500;
+    try {
+      cfg.validate();
+    } catch (const std::invalid_argument&) {
+      continue;  // rejected up front: fine
+    }
+    Localizer loc(room.grid, cfg);
+    (void)loc.update({}, scan, 0.0);
+    const UpdateResult r = loc.update({0.5, 0.0, 0.3}, scan, 1.0);
+    EXPECT_TRUE(result_finite(r)) << "alphas " << a << ": estimate " << r.estimate.x << ", "
+                                  << r.estimate.y << ", " << r.estimate.theta;
+    EXPECT_TRUE(weights_finite(loc.particles())) << "alphas " << a;
+  }
+}
+
 }  // namespace
 }  // namespace pgmcl::stress

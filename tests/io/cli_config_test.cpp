@@ -5,6 +5,7 @@
 
 #include "pgmcl/io/cli_errors.hpp"
 #include "pgmcl/io/config_yaml.hpp"
+#include "pgmcl/io/experiment_yaml.hpp"
 
 namespace pgmcl::io {
 namespace {
@@ -142,6 +143,19 @@ TEST(CliConfig, SetOverridesUseDottedKeys) {
   EXPECT_THROW(apply_localizer_override("filter..particles", "3", c), ConfigError);
   EXPECT_THROW(apply_localizer_overrides({"filter.particles"}, c), UsageError);
   EXPECT_EQ(c.filter.particles, 2000u);
+}
+
+TEST(CliConfig, BundledExamplesParse) {
+  LocalizerConfig c;
+  read_localizer_config(PGMCL_SOURCE_DIR "/configs/filters/tracking.yaml", c);
+  EXPECT_EQ(c.filter.kld.max_particles, 5000u);
+  const Experiment e = read_experiment(PGMCL_SOURCE_DIR "/configs/experiments/lab.yaml");
+  EXPECT_EQ(e.name, "lab");
+  EXPECT_EQ(e.init.kind, ExperimentInit::Kind::kTruth);
+  EXPECT_TRUE(e.log.empty());
+  EXPECT_NE(e.scenario.find("configs/scenarios/lab.yaml"), std::string::npos) << e.scenario;
+  EXPECT_EQ(e.filter.filter.particles, 2000u);
+  EXPECT_EQ(e.out, "pgmcl-out/lab");
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "pgmcl/mcl/update_result.hpp"
 
@@ -21,15 +22,23 @@ void require_positive(double v, const char* field) {
     fail(field, "must be finite and > 0 (got " + std::to_string(v) + ")");
 }
 
+constexpr double kMaxMotionAlpha = 100.0;
+
 }  // namespace
 
 void LocalizerConfig::validate() const {
   const MotionNoise& n = motion.noise;
-  require_finite_nonneg(n.a1, "motion.noise.a1");
-  require_finite_nonneg(n.a2, "motion.noise.a2");
-  require_finite_nonneg(n.a3, "motion.noise.a3");
-  require_finite_nonneg(n.a4, "motion.noise.a4");
-  require_finite_nonneg(n.a5, "motion.noise.a5");
+  // Variance-form alphas above kMaxAlpha mean odometry carries no information (a std of
+  // 10x the motion itself); far larger ones overflow the sampled poses to Inf/NaN.
+  for (const auto& [alpha, field] :
+       {std::pair{n.a1, "motion.noise.a1"}, std::pair{n.a2, "motion.noise.a2"},
+        std::pair{n.a3, "motion.noise.a3"}, std::pair{n.a4, "motion.noise.a4"},
+        std::pair{n.a5, "motion.noise.a5"}}) {
+    require_finite_nonneg(alpha, field);
+    if (alpha > kMaxMotionAlpha)
+      fail(field, "must be <= " + std::to_string(kMaxMotionAlpha) + " (got " +
+                      std::to_string(alpha) + ")");
+  }
 
   const LikelihoodConfig& l = likelihood;
   require_positive(l.beam.sigma_along, "likelihood.beam.sigma_along");

@@ -52,8 +52,13 @@ enum class TableKind : std::uint8_t { kIsotropic, kOrientedBins, kOffsetField };
 [[nodiscard]] TableKind table_kind_from_string(const std::string& name);
 
 /// floor() for the hot path: exact for c >= -1024, and still negative (out of bounds)
-/// below that, without a libm call.
+/// below that, without a libm call. Coordinates are clamped to +/-1e9 cells first: a float
+/// beyond int range (particles thrown off by absurd odometry) must read "off the map", and
+/// converting it would be undefined behaviour. NaN fails the first comparison and goes to
+/// -1e9 (off the map) too. The ternaries compile to maxss/minss.
 [[nodiscard]] inline int floor_to_cell(float c) noexcept {
+  c = c > -1.0e9f ? c : -1.0e9f;
+  c = c < 1.0e9f ? c : 1.0e9f;
   return static_cast<int>(c + 1024.0f) - 1024;
 }
 

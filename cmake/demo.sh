@@ -20,6 +20,6 @@ $pgmcl perturb --log data/logs/intel-corrected.log.gz --odom-noise 0.005,0.0005,
 $pgmcl run configs/experiments/intel-demo.yaml --out "$out/intel/tracking"
 
 echo "== Simulated UTM-30LX scene (the paper's sensor, 1081 beams)"
-$pgmcl run configs/experiments/utm-lab-demo.yaml --out "$out/utm-lab"
+$pgmcl run configs/experiments/lab.yaml --out "$out/utm-lab"
 
 echo "== Results in $out/ (trajectory.tum, metrics.yaml, overlay.png, error.png per run)"

@@ -5,7 +5,9 @@
 //    or backwards timestamps, and otherwise returns the same records;
 //  - report.lines counts the input's lines;
 //  - every record the reader kept is written back by format_* and re-read identically
-//    (carmen_writer.hpp: "read_carmen(write_carmen(log)) gives back the same values").
+//    (carmen_writer.hpp: "read_carmen(write_carmen(log)) gives back the same values");
+//  - read_carmen on the same bytes in a file (LineReader, gzip-transparent) gives the same
+//    records and line count as parse_carmen in memory (carmen.hpp: "Same, from text").
 
 #include <algorithm>
 #include <cmath>
@@ -103,6 +105,27 @@ bool rewrite(const CarmenLog& log, std::string& out) {
   return true;
 }
 
+/// read_carmen on the bytes in a file must agree with parse_carmen on them in memory.
+void check_file_matches_memory(std::string_view text, const CarmenLog& memory) {
+  try {
+    const CarmenLog file = read_carmen(fuzz::write_scratch("fuzz.log", text));
+    if (file.report.lines != memory.report.lines ||
+        file.report.malformed != memory.report.malformed)
+      fuzz::fail("read_carmen(file) and parse_carmen(text) disagree",
+                 "lines " + std::to_string(file.report.lines) + " vs " +
+                     std::to_string(memory.report.lines) + ", malformed " +
+                     std::to_string(file.report.malformed) + " vs " +
+                     std::to_string(memory.report.malformed));
+    expect_same_log(memory, file, "file vs memory");
+  } catch (const IoError&) {
+    // Documented for files: a corrupt gzip stream (the input may start with gzip's magic).
+    if (text.size() < 2 || text[0] != '\x1f' || text[1] != '\x8b')
+      fuzz::fail("IoError reading a plain file");
+  } catch (const std::exception& e) {
+    fuzz::undocumented(e);
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -136,6 +159,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } catch (const std::exception& e) {
     fuzz::undocumented(e);
   }
+
+  if (fuzz::line_reader_safe(text)) check_file_matches_memory(text, lenient);
 
   std::string written;
   try {

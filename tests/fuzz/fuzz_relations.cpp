@@ -1,7 +1,8 @@
 // libFuzzer target: the SLAM-benchmark relations reader (pgmcl::io::parse_relations) and
 // the relative-pose metric (Kuemmerle et al. 2009) on an estimate built from the input.
 // Oracles: only FormatError escapes (relations.hpp); relations hold finite numbers;
-// matched + degenerate + unmatched == relations; per-relation errors finite and >= 0.
+// matched + degenerate + unmatched == relations; per-relation errors finite and >= 0;
+// read_relations on the same bytes in a file fails at the same line and field, or not.
 
 #include <cmath>
 #include <cstddef>
@@ -21,6 +22,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   } catch (const std::exception& e) {
     fuzz::undocumented(e);
+  }
+  if (fuzz::line_reader_safe(fuzz::as_text(data, size))) {
+    const std::string path = fuzz::write_scratch("fuzz.relations", fuzz::as_text(data, size));
+    std::string file;
+    try {
+      file = fuzz::outcome<io::FormatError>([&] { return io::read_relations(path); });
+      if (file == "ok" && io::read_relations(path).size() != rel.size())
+        fuzz::fail("read_relations(file) and parse_relations(text) disagree on the count");
+    } catch (const std::exception& e) {
+      fuzz::undocumented(e);
+    }
+    if (file != "ok") fuzz::fail("read_relations(file) failed where parse_relations did not", file);
   }
   io::Trajectory est;
   for (const io::Relation& r : rel) {

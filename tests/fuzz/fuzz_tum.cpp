@@ -1,7 +1,8 @@
 // libFuzzer target: the TUM trajectory reader (pgmcl::io::parse_tum) and writer.
 // Oracles beyond "no crash": only FormatError escapes (tum.hpp); every pose read is finite
 // with a wrapped heading in (-pi, pi]; format_tum/parse_tum gives back the stamp and x, y
-// exactly and the heading to 1e-12 rad; the trajectory lookups stay finite.
+// exactly and the heading to 1e-12 rad; the trajectory lookups stay finite; read_tum on
+// the same bytes in a file gives the same poses, or fails at the same line and field.
 
 #include <cmath>
 #include <cstddef>
@@ -37,6 +38,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   } catch (const std::exception& e) {
     fuzz::undocumented(e);
+  }
+  if (fuzz::line_reader_safe(fuzz::as_text(data, size))) {
+    const std::string path = fuzz::write_scratch("fuzz.tum", fuzz::as_text(data, size));
+    const std::string mem = fuzz::outcome<io::FormatError>(
+        [&] { return io::parse_tum(fuzz::as_text(data, size), "fuzz.tum"); });
+    std::string file;
+    try {
+      file = fuzz::outcome<io::FormatError>([&] { return io::read_tum(path); });
+    } catch (const std::exception& e) {
+      fuzz::undocumented(e);
+    }
+    if (mem != file) fuzz::fail("read_tum(file) and parse_tum(text) disagree", mem + " vs " + file);
   }
   std::string text;
   try {

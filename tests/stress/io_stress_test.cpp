@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -101,6 +104,31 @@ TEST(StressCarmen, RepeatedAndBackwardsTimestamps) {
   EXPECT_EQ(log.report.backwards_lines[0].line, 4u);
   EXPECT_EQ(log.report.backwards_lines[1].line, 5u);
   EXPECT_EQ(log.report.malformed, 0u);
+}
+
+// Regression (found by fuzz_carmen's file-vs-memory oracle, reported): read_carmen(path)
+// and parse_carmen(text) must agree on the same bytes. inputs/carmen_nul_bytes.log has NUL
+// bytes inside a ROBOTLASER1 line: LineReader measures gzgets' chunk with strlen, misses
+// the newline after the NUL and merges the next line (TRUEPOS) into it: 3 lines instead of
+// 4, the TRUEPOS record lost. inputs/carmen_double_cr.log ends a line in "\r\r\n":
+// LineReader strips both '\r', parse_carmen one (its last field is then malformed).
+TEST(StressCarmen, FileAndMemoryReadersAgree) {
+  for (const char* name : {"carmen_nul_bytes.log", "carmen_double_cr.log"}) {
+    SCOPED_TRACE(name);
+    const std::string path = std::string(PGMCL_SOURCE_DIR) + "/tests/stress/inputs/" + name;
+    std::ifstream in(path, std::ios::binary);
+    ASSERT_TRUE(in) << path;
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const CarmenLog memory = parse_carmen(text, path);
+    const CarmenLog file = read_carmen(path);
+    EXPECT_EQ(file.report.lines, memory.report.lines);
+    EXPECT_EQ(file.report.lines,
+              static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')));
+    EXPECT_EQ(file.report.malformed, memory.report.malformed);
+    EXPECT_EQ(file.scans.size(), memory.scans.size());
+    EXPECT_EQ(file.odometry.size(), memory.odometry.size());
+    EXPECT_EQ(file.truepos.size(), memory.truepos.size());
+  }
 }
 
 }  // namespace

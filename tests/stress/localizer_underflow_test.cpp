@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <numbers>
@@ -20,6 +22,13 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kPaperSigmaAlong = 5.6894e-3;  // metres
+
+bool symmetric_psd(const Eigen::Matrix3d& c) {
+  if (!c.allFinite() || (c - c.transpose()).cwiseAbs().maxCoeff() > 1e-12) return false;
+  const double scale = std::max(1e-300, c.cwiseAbs().maxCoeff());
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(c).eigenvalues().minCoeff() >=
+         -1e-12 * scale;
+}
 
 #ifdef NDEBUG
 constexpr std::size_t kParticles = 2000;
@@ -65,6 +74,9 @@ RunErrors run_loop(const FiveMillimetreRun& run, const LocalizerConfig& cfg, dou
     EXPECT_EQ(r.beams_used, 1081u);
     EXPECT_GE(r.n_eff, 1.0 - 1e-9);
     min_neff = std::min(min_neff, r.n_eff);
+    // A collapsed cloud (N_eff ~ 1): covariances still symmetric PSD, never NaN.
+    EXPECT_TRUE(symmetric_psd(r.covariance)) << r.covariance;
+    EXPECT_TRUE(symmetric_psd(r.mean_covariance)) << r.mean_covariance;
   };
   const RunErrors e = drive(loc, scanner, run.room.grid, run.truth, run.odom, 5, 0,
                             on_scan([&](std::size_t, LaserScan&) { check(loc.last_result()); }));

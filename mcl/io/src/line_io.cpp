@@ -42,33 +42,24 @@ LineReader::~LineReader() {
 
 bool LineReader::next(std::string_view& line) {
   buffer_.clear();
-  char chunk[8192];
   bool got_any = false;
-  // gzgets stops at the buffer size, so long lines (a 1081-beam scan) arrive in pieces.
-  while (gzgets(as_gz(file_), chunk, sizeof(chunk)) != nullptr) {
+  // Byte by byte through zlib's buffered gzgetc: a line may hold NUL bytes (corrupt logs),
+  // which a gzgets + strlen reader would mistake for the end of the chunk and so merge
+  // the next line into this one.
+  for (int c = gzgetc(as_gz(file_)); c != -1; c = gzgetc(as_gz(file_))) {
     got_any = true;
-    const std::size_t n = std::strlen(chunk);
-    buffer_.append(chunk, n);
-    if (n > 0 && chunk[n - 1] == '\n') break;
-  }
-  if (!got_any) {
-    int code = Z_OK;
-    gzerror(as_gz(file_), &code);
-    if (code != Z_OK) {
-      throw IoError("error reading '" + path_ + "' after line " + std::to_string(line_number_) +
-                    ": " + gz_message(file_));
-    }
-    return false;
+    if (c == '\n') break;
+    buffer_.push_back(static_cast<char>(c));
   }
   int code = Z_OK;
   gzerror(as_gz(file_), &code);
   if (code != Z_OK) {
-    throw IoError("error reading '" + path_ + "' at line " + std::to_string(line_number_ + 1) +
-                  ": " + gz_message(file_));
+    throw IoError("error reading '" + path_ + "' " + (got_any ? "at" : "after") + " line " +
+                  std::to_string(line_number_ + (got_any ? 1 : 0)) + ": " + gz_message(file_));
   }
-  while (!buffer_.empty() && (buffer_.back() == '\n' || buffer_.back() == '\r')) {
-    buffer_.pop_back();
-  }
+  if (!got_any) return false;
+  // One CR of a CRLF ending, exactly as parse_carmen strips it from in-memory text.
+  if (!buffer_.empty() && buffer_.back() == '\r') buffer_.pop_back();
   ++line_number_;
   line = buffer_;
   return true;

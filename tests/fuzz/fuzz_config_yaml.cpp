@@ -6,7 +6,7 @@
 //    it back gives the same YAML (config_yaml.hpp: "reads it back to an identical struct");
 //  - a Localizer built from an accepted config on a small map either refuses it with a
 //    documented exception (std::invalid_argument, std::length_error) or runs two updates
-//    without a non-finite estimate, covariance, N_eff or weight. Counts above 4096 particles
+//    without a non-finite estimate, covariance, N_eff or weight. Counts above 512 particles
 //    and table budgets above 1 MiB are lowered first (memory limits are not the subject).
 // Lines of the input of the form key=value are also applied as --set overrides.
 
@@ -45,7 +45,7 @@ bool finite(const UpdateResult& r) {
 }
 
 void run_engine(LocalizerConfig cfg) {
-  constexpr std::size_t kMaxCount = 4096;
+  constexpr std::size_t kMaxCount = 512;
   cfg.filter.particles = std::min(cfg.filter.particles, kMaxCount);
   cfg.filter.global_particles = std::min(cfg.filter.global_particles, kMaxCount);
   cfg.filter.kld.max_particles = std::min(cfg.filter.kld.max_particles, kMaxCount);

@@ -23,7 +23,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } catch (const std::exception& e) {
     fuzz::undocumented(e);
   }
-  if (fuzz::line_reader_safe(fuzz::as_text(data, size))) {
+  {
     const std::string path = fuzz::write_scratch("fuzz.relations", fuzz::as_text(data, size));
     std::string file;
     try {

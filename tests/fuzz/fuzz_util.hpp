@@ -83,13 +83,6 @@ inline std::string_view as_text(const std::uint8_t* data, std::size_t size) {
 
 namespace pgmcl::fuzz {
 
-/// False for inputs that hit the known LineReader bugs (NUL bytes, "\r\r" line ends; see
-/// tests/stress/io_stress_test.cpp, StressCarmen.FileAndMemoryReadersAgree): the file-vs-
-/// memory comparisons skip them until that is fixed, so the fuzzers look further.
-inline bool line_reader_safe(std::string_view text) {
-  return text.find('\0') == std::string_view::npos && text.find("\r\r") == std::string_view::npos;
-}
-
 /// Runs `parse` (a callable returning a value or throwing) and returns its outcome as
 /// "ok" or "<line>:<field>" of the FormatError-like exception E it threw.
 template <class E, class F>

@@ -106,12 +106,12 @@ TEST(StressCarmen, RepeatedAndBackwardsTimestamps) {
   EXPECT_EQ(log.report.malformed, 0u);
 }
 
-// Regression (found by fuzz_carmen's file-vs-memory oracle, reported): read_carmen(path)
-// and parse_carmen(text) must agree on the same bytes. inputs/carmen_nul_bytes.log has NUL
-// bytes inside a ROBOTLASER1 line: LineReader measures gzgets' chunk with strlen, misses
-// the newline after the NUL and merges the next line (TRUEPOS) into it: 3 lines instead of
+// Regression (found by fuzz_carmen's file-vs-memory oracle; fixed in 842f048): read_carmen
+// (path) and parse_carmen(text) must agree on the same bytes. inputs/carmen_nul_bytes.log has NUL
+// bytes inside a ROBOTLASER1 line: LineReader measured gzgets' chunk with strlen, missed
+// the newline after the NUL and merged the next line (TRUEPOS) into it: 3 lines instead of
 // 4, the TRUEPOS record lost. inputs/carmen_double_cr.log ends a line in "\r\r\n":
-// LineReader strips both '\r', parse_carmen one (its last field is then malformed).
+// LineReader stripped both '\r', parse_carmen one (its last field is then malformed).
 TEST(StressCarmen, FileAndMemoryReadersAgree) {
   for (const char* name : {"carmen_nul_bytes.log", "carmen_double_cr.log"}) {
     SCOPED_TRACE(name);

@@ -335,8 +335,8 @@ TEST(StressLikelihood, UtmOriginChangesNoTableByte) {
   EXPECT_EQ(b.origin().y, 5e6);
 }
 
-// Regression (found by fuzz_config_yaml, reported): a kernel reach beyond int range was cast
-// to int before the "reach exceeds" check (UB; on x86 it became INT_MIN, clamped to 1), so
+// Regression (found by fuzz_config_yaml; fixed in f59d966): a kernel reach beyond int range
+// was cast to int before the "reach exceeds" check (UB; on x86 INT_MIN, clamped to 1), so
 // absurd sigmas built a table with a 1-cell reach instead of failing. Every such parameter
 // set must be a clear std::invalid_argument. (Under UBSan the old code aborts here.)
 TEST(StressLikelihood, AbsurdSigmasAreAClearErrorNotAOneCellReach) {

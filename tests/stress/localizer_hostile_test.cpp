@@ -239,9 +239,9 @@ TEST(StressTimeAndMotion, TimestampsGoingBackwards) {
   }
 }
 
-// Regression (reported): odometry garbage that is finite but absurd (1e30 m, as from a
-// corrupted log) throws the particles to coordinates beyond int range in cells; the hot
-// loop's floor_to_cell then casts them to int (UB, caught by UBSan in the Debug build).
+// Regression (fixed in 361069c): odometry garbage that is finite but absurd (1e30 m, as from
+// a corrupted log) threw the particles to coordinates beyond int range in cells; the hot
+// loop's floor_to_cell then cast them to int (UB, caught by UBSan in the Debug build).
 // Wanted: every beam reads the background (off the map), nothing NaN, and recovery once the
 // odometry is sane again.
 TEST(StressTimeAndMotion, OdometryGarbageOf1e30m) {

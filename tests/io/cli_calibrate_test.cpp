@@ -13,6 +13,7 @@ namespace pgmcl {
 namespace {
 
 using cli_test::RunResult;
+using cli_test::run_pgmcl;
 using cli_test::TempDir;
 
 /// The first number after `label` in the output.

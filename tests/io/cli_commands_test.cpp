@@ -14,6 +14,7 @@ namespace pgmcl {
 namespace {
 
 using cli_test::RunResult;
+using cli_test::run_pgmcl;
 using cli_test::TempDir;
 
 TEST(CliCommands, AllSubcommandsAreRegistered) {

@@ -13,6 +13,7 @@ namespace pgmcl {
 namespace {
 
 using cli_test::RunResult;
+using cli_test::run_pgmcl;
 using cli_test::TempDir;
 
 double distance_to_walls(const cli_test::Room& r, double x, double y) {

@@ -16,6 +16,7 @@ namespace pgmcl {
 namespace {
 
 using cli_test::RunResult;
+using cli_test::run_pgmcl;
 using cli_test::TempDir;
 
 /// A zig-zag path of `n` poses made of identical increments (rot1, trans, rot2), so the

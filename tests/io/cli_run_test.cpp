@@ -14,14 +14,12 @@ namespace pgmcl {
 namespace {
 
 using cli_test::RunResult;
+using cli_test::run_pgmcl;
 using cli_test::TempDir;
 
 /// room.yaml (the synthetic room, mapped) and a short scenario driving a loop in it.
 void prepare(const TempDir& dir) {
-  io::write_carmen(dir.file("corrected.log"),
-                   cli_test::room_log(cli_test::Room{}, cli_test::room_loop(40), 180));
-  ASSERT_EQ(run_pgmcl("map --log corrected.log --max-range 81.9 --out maps/room.yaml", dir).code,
-            0);
+  ASSERT_EQ(cli_test::map_room(dir, 40, "maps/room.yaml").code, 0);
   cli_test::write_text(dir.file("scenario.yaml"),
                        "name: room-loop\n"
                        "map: maps/room.yaml\n"

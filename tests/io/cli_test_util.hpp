@@ -2,57 +2,24 @@
 // Helpers for the tests that run the built `pgmcl` binary on small synthetic inputs.
 
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <numbers>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "pgmcl/io/carmen.hpp"
 #include "pgmcl/io/carmen_writer.hpp"
 #include "pgmcl/maps/se2.hpp"
+#include "temp_files.hpp"
 
 namespace pgmcl::cli_test {
 
-/// A fresh directory under /tmp, removed at scope exit.
-class TempDir {
- public:
-  explicit TempDir(const std::string& name)
-      : path_(std::filesystem::temp_directory_path() /
-              ("pgmcl_" + name + "_" + std::to_string(::getpid()))) {
-    std::filesystem::remove_all(path_);
-    std::filesystem::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  [[nodiscard]] std::string file(const std::string& name) const { return (path_ / name).string(); }
-  [[nodiscard]] const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
-
-inline std::string read_text(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
-
-inline void write_text(const std::string& path, const std::string& text) {
-  std::ofstream f(path, std::ios::binary);
-  f << text;
-}
+using testkit::read_text;
+using testkit::TempDir;
+using testkit::write_text;
 
 struct RunResult {
   int code = -1;
@@ -124,6 +91,14 @@ inline std::vector<Pose2> room_loop(int n) {
     p.push_back({3.4 + 1.6 * std::cos(phi), 2.6 + 1.2 * std::sin(phi), wrap_angle(phi + 1.6)});
   }
   return p;
+}
+
+/// The common start of the end-to-end tests: writes corrected.log (the exact log of
+/// room_loop(`poses`) in the default room, 180 beams) to `dir` and maps it with `pgmcl map`
+/// into `map_path`. Returns the map command's result.
+inline RunResult map_room(const TempDir& dir, int poses, const std::string& map_path) {
+  io::write_carmen(dir.file("corrected.log"), room_log(Room{}, room_loop(poses), 180));
+  return run_pgmcl("map --log corrected.log --max-range 81.9 --out " + map_path, dir);
 }
 
 }  // namespace pgmcl::cli_test

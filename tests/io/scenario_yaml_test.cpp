@@ -2,8 +2,6 @@
 // structs' defaults, relative paths resolve against the YAML's folder, and every kind of
 // bad input throws ScenarioError naming file, line and key.
 
-#include "pgmcl/io/scenario_yaml.hpp"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,31 +11,20 @@
 #include <string>
 
 #include "io_test_util.hpp"
+#include "pgmcl/io/scenario_yaml.hpp"
 #include "pgmcl/maps/map_io.hpp"
 
 namespace pgmcl::io {
 namespace {
 
 namespace fs = std::filesystem;
-using test::ScratchDir;
+using test::TempDir;
 
-void write_text(const std::string& path, const std::string& text) {
-  fs::create_directories(fs::path(path).parent_path());
-  std::ofstream(path) << text;
-}
+using testkit::write_text;
 
 /// A 4 x 3 m room at 10 cm (walls on the border), saved as <dir>/maps/room.yaml.
 maps::OccupancyGrid room() {
-  maps::OccupancyGrid g(40, 30, 0.1, Pose2{-1.0, -0.5, 0.0}, maps::kFree);
-  for (int c = 0; c < g.width(); ++c) {
-    g.set(c, 0, maps::kOccupied);
-    g.set(c, g.height() - 1, maps::kOccupied);
-  }
-  for (int r = 0; r < g.height(); ++r) {
-    g.set(0, r, maps::kOccupied);
-    g.set(g.width() - 1, r, maps::kOccupied);
-  }
-  return g;
+  return test::walled_room(40, 30, 0.1, Pose2{-1.0, -0.5, 0.0});
 }
 
 class ScenarioYaml : public ::testing::Test {
@@ -65,7 +52,7 @@ class ScenarioYaml : public ::testing::Test {
     ADD_FAILURE() << "no ScenarioError for:\n" << body;
     return ScenarioError(path, 0, "", "");
   }
-  ScratchDir dir_;
+  TempDir dir_;
 };
 
 TEST_F(ScenarioYaml, MinimalFileKeepsEveryDefault) {

@@ -15,20 +15,11 @@
 namespace pgmcl::io {
 namespace {
 
-using test::ScratchDir;
+using test::TempDir;
 
 /// A 6 x 4 m walled room at 5 cm, a robot driving a short waypoint path.
 maps::OccupancyGrid room() {
-  maps::OccupancyGrid g(120, 80, 0.05, Pose2{-1.0, -1.0, 0.0}, maps::kFree);
-  for (int c = 0; c < g.width(); ++c) {
-    g.set(c, 0, maps::kOccupied);
-    g.set(c, g.height() - 1, maps::kOccupied);
-  }
-  for (int r = 0; r < g.height(); ++r) {
-    g.set(0, r, maps::kOccupied);
-    g.set(g.width() - 1, r, maps::kOccupied);
-  }
-  return g;
+  return test::walled_room(120, 80, 0.05, Pose2{-1.0, -1.0, 0.0});
 }
 
 sims::SimulationLog simulate(const sims::SensorProfile& sensor, const Pose2& mount) {
@@ -44,7 +35,7 @@ sims::SimulationLog simulate(const sims::SensorProfile& sensor, const Pose2& mou
 }
 
 void expect_round_trip(const sims::SimulationLog& log, LaserMessage expected) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.file("sim.log.gz");
   write_sim_carmen(path, log);
   CarmenReadOptions opt;
@@ -99,7 +90,7 @@ TEST(SimLogIo, MountedSickOffTheAxisNeedsRobotLaser1) {
 }
 
 TEST(SimLogIo, TruthTumReadsBackToTheTruePoses) {
-  ScratchDir dir;
+  TempDir dir;
   const auto log = simulate(sims::utm30lx(), Pose2{});
   write_sim_truth_tum(dir.file("truth.tum"), log);
   const Trajectory t = read_tum(dir.file("truth.tum"));

@@ -84,7 +84,7 @@ TEST(CarmenMalformed, CountedWithLineAndField) {
 }
 
 TEST(CarmenMalformed, StrictModeThrowsFileLineField) {
-  test::ScratchDir dir;
+  test::TempDir dir;
   const std::string path = dir.file("snippet.log");
   {
     LineWriter w(path);

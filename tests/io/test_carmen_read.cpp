@@ -66,7 +66,7 @@ TEST(CarmenIntel, CountsStampsAndPoses) {
 }
 
 TEST(CarmenIntel, GzipAndPlainReadIdentically) {
-  test::ScratchDir dir;
+  test::TempDir dir;
   const std::string plain = dir.file("intel.log");
   {
     LineReader in(intel_path());

@@ -125,7 +125,7 @@ void expect_same_log(const CarmenLog& a, const CarmenLog& b) {
 
 TEST(CarmenWrite, EveryRecordTypeRoundTripsPlainAndGzip) {
   const CarmenLog log = every_record_type();
-  test::ScratchDir dir;
+  test::TempDir dir;
   for (const char* name : {"all.log", "all.log.gz"}) {
     SCOPED_TRACE(name);
     write_carmen(dir.file(name), log);
@@ -142,7 +142,7 @@ TEST(CarmenWrite, EveryRecordTypeRoundTripsPlainAndGzip) {
 
 TEST(CarmenWrite, IntelRewritesIdentically) {
   const CarmenLog log = read_carmen(test::data_path("logs/intel-corrected.log.gz"));
-  test::ScratchDir dir;
+  test::TempDir dir;
   write_carmen(dir.file("intel.log.gz"), log);
   const CarmenLog back = read_carmen(dir.file("intel.log.gz"));
   expect_same_log(log, back);
@@ -173,7 +173,7 @@ TEST(CarmenWrite, ScanRecordsForSimulatedScans) {
   EXPECT_EQ(log.scans[1].message, LaserMessage::kRobotLaser1);
   set_front_laser_params(log.params, sick);
 
-  test::ScratchDir dir;
+  test::TempDir dir;
   write_carmen(dir.file("sim.log"), log);
   const CarmenLog back = read_carmen(dir.file("sim.log"));
   ASSERT_EQ(back.scans.size(), 2u);

@@ -27,7 +27,7 @@ std::vector<std::string> read_all(const std::string& path) {
 
 TEST(LineIo, LongLinesCrlfAndNoFinalNewlinePlainAndGzip) {
   const std::string long_line(100000, 'x');  // far past gzgets' chunk size
-  test::ScratchDir dir;
+  test::TempDir dir;
   for (const char* name : {"a.txt", "a.txt.gz"}) {
     {
       LineWriter w(dir.file(name));
@@ -57,7 +57,7 @@ TEST(LineIo, LongLinesCrlfAndNoFinalNewlinePlainAndGzip) {
 }
 
 TEST(LineIo, TruncatedGzipIsAnErrorNotAShortFile) {
-  test::ScratchDir dir;
+  test::TempDir dir;
   {
     LineWriter w(dir.file("c.gz"));
     for (int i = 0; i < 20000; ++i) w.write_line("line " + std::to_string(i * 7919));

@@ -23,7 +23,7 @@ TEST(Tum, RoundTripPlainAndGzip) {
     t.push_back({stamp, {1.0 / 7.0 + stamp * 1e-9, -1234.5678901234, th}});
     stamp += 0.0999999;
   }
-  test::ScratchDir dir;
+  test::TempDir dir;
   for (const char* name : {"traj.txt", "traj.txt.gz"}) {
     write_tum(dir.file(name), t);
     const Trajectory back = read_tum(dir.file(name));

@@ -4,15 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
-#include <filesystem>
-#include <fstream>
 #include <functional>
 #include <initializer_list>
-#include <random>
 #include <string>
 #include <vector>
 
 #include "pgmcl/maps/map_io.hpp"
+#include "temp_files.hpp"
 
 namespace pgmcl::maps::test {
 
@@ -20,44 +18,10 @@ inline std::string data_dir() {
   return std::string(PGMCL_SOURCE_DIR) + "/data/maps";
 }
 
-/// A fresh folder under the system temp dir, removed with everything in it.
-class TempDir {
- public:
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::random_device rd;
-    path_ = std::filesystem::temp_directory_path() /
-            ("pgmcl_mapio_" + std::string(info != nullptr ? info->name() : "x") + "_" +
-             std::to_string(rd()) + std::to_string(rd()));
-    std::filesystem::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-
-  [[nodiscard]] std::string file(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  std::filesystem::path path_;
-};
-
-inline void write_text(const std::string& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
-}
-
-inline void write_bytes(const std::string& path, const std::vector<std::uint8_t>& bytes) {
-  std::ofstream(path, std::ios::binary)
-      .write(reinterpret_cast<const char*>(bytes.data()),
-             static_cast<std::streamsize>(bytes.size()));
-}
-
-inline std::vector<std::uint8_t> read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using testkit::read_bytes;
+using testkit::TempDir;
+using testkit::write_bytes;
+using testkit::write_text;
 
 /// A binary P5 greymap, rows top-down as the format stores them.
 inline std::vector<std::uint8_t> make_p5(int w, int h, const std::vector<std::uint8_t>& px,

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "drive_path.hpp"
 #include "pgmcl/mcl/localizer.hpp"
 #include "synthetic_world.hpp"
 
@@ -25,12 +26,8 @@ struct LoopErrors {
   std::vector<double> err_xy;  // per step
 };
 
-[[nodiscard]] inline double xy_error(const Pose2& a, const Pose2& b) {
-  return std::hypot(a.x - b.x, a.y - b.y);
-}
-[[nodiscard]] inline double theta_error(const Pose2& a, const Pose2& b) {
-  return std::abs(wrap_angle(a.theta - b.theta));
-}
+using testkit::theta_error;
+using testkit::xy_error;
 
 // Runs steps [begin, end) of `truth` (map-local). Errors are accumulated from step
 // `score_from` on (to leave time for global convergence). Global truth = origin ∘ local.
@@ -40,8 +37,7 @@ inline LoopErrors run_loop(Localizer& loc, const World& world, const std::vector
                            std::size_t score_from = 0, double t0 = 0.0) {
   LoopErrors e;
   Rng noise(noise_seed);
-  double sq = 0.0;
-  std::size_t scored = 0;
+  testkit::ErrorScore score;
   const Pose2& origin = world.grid.origin();
   for (std::size_t k = begin; k < end; ++k) {
     const double stamp = t0 + 0.1 * static_cast<double>(k);
@@ -57,14 +53,11 @@ inline LoopErrors run_loop(Localizer& loc, const World& world, const std::vector
     e.err_xy.push_back(dxy);
     e.final_xy = dxy;
     e.final_theta = dth;
-    if (k >= score_from) {
-      sq += dxy * dxy;
-      ++scored;
-      e.max_xy = std::max(e.max_xy, dxy);
-      e.max_theta = std::max(e.max_theta, dth);
-    }
+    if (k >= score_from) score.add(dxy, dth);
   }
-  e.rmse_xy = scored > 0 ? std::sqrt(sq / static_cast<double>(scored)) : 0.0;
+  e.rmse_xy = score.rmse_xy();
+  e.max_xy = score.max_xy;
+  e.max_theta = score.max_theta;
   return e;
 }
 

@@ -10,6 +10,7 @@
 #include <numbers>
 #include <vector>
 
+#include "drive_path.hpp"
 #include "pgmcl/maps/occupancy_grid.hpp"
 #include "pgmcl/mcl/laser_scan.hpp"
 #include "pgmcl/mcl/motion_model.hpp"
@@ -146,45 +147,16 @@ inline World make_small_room(double resolution, const Pose2& origin = {}) {
 // rotate in place towards the next waypoint in <= `turn_step` increments, then drive in
 // <= `step` increments.
 inline std::vector<Pose2> loop_trajectory(double step = 0.1, double turn_step = 0.15) {
-  const double wp[][2] = {{2.0, 4.5}, {9.0, 4.5}, {9.0, 7.6}, {5.0, 7.6},
-                          {1.5, 7.6}, {1.5, 4.5}, {2.0, 4.5}};
-  std::vector<Pose2> out;
-  Pose2 p{wp[0][0], wp[0][1], 0.0};
-  out.push_back(p);
-  for (std::size_t k = 1; k < std::size(wp); ++k) {
-    const double tx = wp[k][0], ty = wp[k][1];
-    const double heading = std::atan2(ty - p.y, tx - p.x);
-    double dth = wrap_angle(heading - p.theta);
-    while (std::abs(dth) > 1e-9) {
-      const double d = std::clamp(dth, -turn_step, turn_step);
-      p.theta = wrap_angle(p.theta + d);
-      dth -= d;
-      out.push_back(p);
-    }
-    double dist = std::hypot(tx - p.x, ty - p.y);
-    while (dist > 1e-9) {
-      const double d = std::min(step, dist);
-      p.x += d * std::cos(heading);
-      p.y += d * std::sin(heading);
-      dist -= d;
-      out.push_back(p);
-    }
-  }
-  return out;
+  return testkit::waypoint_path(
+      {{2.0, 4.5}, {9.0, 4.5}, {9.0, 7.6}, {5.0, 7.6}, {1.5, 7.6}, {1.5, 4.5}, {2.0, 4.5}}, step,
+      turn_step);
 }
 
 // Noisy odometry for a ground-truth path: each increment is perturbed by the motion model.
 inline std::vector<Pose2> noisy_odometry(const std::vector<Pose2>& truth, const MotionNoise& noise,
                                          std::uint64_t seed,
                                          const Pose2& odom_start = {1.0, -2.0, 0.3}) {
-  Rng rng(seed);
-  std::vector<Pose2> odom{odom_start};
-  for (std::size_t k = 1; k < truth.size(); ++k) {
-    const Pose2 inc = sample_noisy_increment(MotionModelKind::kDifferentialDrive, noise,
-                                             truth[k - 1], truth[k], rng);
-    odom.push_back(odom.back().compose(inc));
-  }
-  return odom;
+  return testkit::noisy_odometry(truth, noise, seed, odom_start);
 }
 
 }  // namespace pgmcl::test

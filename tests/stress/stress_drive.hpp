@@ -1,6 +1,6 @@
 #pragma once
 // Test-only driving for the Localizer stress tests: turn-then-drive paths through
-// waypoints, odometry perturbed by the motion model, and a loop that feeds scans from
+// waypoints and perturbed odometry (tests/common/drive_path.hpp), and a loop that feeds scans from
 // stress_world.hpp's Scanner and records the estimate's error against the truth.
 
 #include <algorithm>
@@ -11,50 +11,19 @@
 #include <utility>
 #include <vector>
 
+#include "drive_path.hpp"
 #include "pgmcl/mcl/localizer.hpp"
 #include "pgmcl/mcl/motion_model.hpp"
 #include "stress_world.hpp"
 
 namespace pgmcl::stress {
 
-/// Map-local poses along `waypoints` (x, y): rotate in place in <= turn_step, then drive in
-/// <= step. The heading at the start is `theta0`.
-inline std::vector<Pose2> waypoint_path(const std::vector<std::pair<double, double>>& waypoints,
-                                        double step, double turn_step, double theta0 = 0.0) {
-  std::vector<Pose2> out;
-  Pose2 p{waypoints.front().first, waypoints.front().second, wrap_angle(theta0)};
-  out.push_back(p);
-  for (std::size_t k = 1; k < waypoints.size(); ++k) {
-    const auto [tx, ty] = waypoints[k];
-    const double heading = std::atan2(ty - p.y, tx - p.x);
-    double dth = wrap_angle(heading - p.theta);
-    while (std::abs(dth) > 1e-9) {
-      const double d = std::clamp(dth, -turn_step, turn_step);
-      p.theta = wrap_angle(p.theta + d);
-      dth -= d;
-      out.push_back(p);
-    }
-    double dist = std::hypot(tx - p.x, ty - p.y);
-    while (dist > 1e-9) {
-      const double d = std::min(step, dist);
-      p.x += d * std::cos(heading);
-      p.y += d * std::sin(heading);
-      dist -= d;
-      out.push_back(p);
-    }
-  }
-  return out;
-}
+using testkit::waypoint_path;
 
 /// Odometry for a true path: each increment perturbed by the model (noise in variance form).
 inline std::vector<Pose2> noisy_odometry(const std::vector<Pose2>& truth, const MotionNoise& noise,
                                          std::uint64_t seed, Pose2 start = {-3.0, 7.0, 2.5}) {
-  Rng rng(seed);
-  std::vector<Pose2> odom{start};
-  for (std::size_t k = 1; k < truth.size(); ++k)
-    odom.push_back(odom.back().compose(sample_noisy_increment(MotionModelKind::kDifferentialDrive,
-                                                              noise, truth[k - 1], truth[k], rng)));
-  return odom;
+  return testkit::noisy_odometry(truth, noise, seed, start);
 }
 
 struct RunErrors {
@@ -119,8 +88,7 @@ inline RunErrors drive(Localizer& loc, const Scanner& scanner, const maps::Occup
                        const DriveHooks& hooks = {}) {
   RunErrors e;
   Rng noise(noise_seed);
-  double sq = 0.0;
-  std::size_t scored = 0;
+  testkit::ErrorScore score;
   for (std::size_t k = 0; k < truth.size(); ++k) {
     const double stamp = hooks.stamp ? hooks.stamp(k) : 0.1 * static_cast<double>(k);
     LaserScan scan = scanner.scan(truth[k], noise, stamp);
@@ -135,18 +103,15 @@ inline RunErrors drive(Localizer& loc, const Scanner& scanner, const maps::Occup
     e.measured += r.measured ? 1 : 0;
     e.all_finite = e.all_finite && result_finite(r) && weights_finite(loc.particles());
     const Pose2 gt = grid.origin().compose(truth[k]);
-    const double dxy = std::hypot(r.estimate.x - gt.x, r.estimate.y - gt.y);
-    const double dth = std::abs(wrap_angle(r.estimate.theta - gt.theta));
+    const double dxy = testkit::xy_error(r.estimate, gt);
+    const double dth = testkit::theta_error(r.estimate, gt);
     e.xy.push_back(dxy);
     e.theta.push_back(dth);
-    if (k >= score_from) {
-      sq += dxy * dxy;
-      ++scored;
-      e.max_xy = std::max(e.max_xy, dxy);
-      e.max_theta = std::max(e.max_theta, dth);
-    }
+    if (k >= score_from) score.add(dxy, dth);
   }
-  e.rmse_xy = scored > 0 ? std::sqrt(sq / static_cast<double>(scored)) : 0.0;
+  e.rmse_xy = score.rmse_xy();
+  e.max_xy = score.max_xy;
+  e.max_theta = score.max_theta;
   return e;
 }
 

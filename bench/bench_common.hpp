@@ -12,6 +12,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <map>
+#include <memory>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -20,9 +22,11 @@
 #include <omp.h>
 #endif
 
+#include "pgmcl/maps/likelihood_field.hpp"
 #include "pgmcl/maps/occupancy_grid.hpp"
 #include "pgmcl/maps/se2.hpp"
 #include "pgmcl/mcl/laser_scan.hpp"
+#include "pgmcl/mcl/localizer_config.hpp"
 #include "pgmcl/mcl/particles.hpp"
 #include "pgmcl/mcl/random.hpp"
 #include "pgmcl/sims/ray_caster.hpp"
@@ -130,6 +134,34 @@ inline maps::OccupancyGrid make_office(const OfficeSpec& s) {
   return g;
 }
 
+/// The per-process world of a benchmark binary for one map size, built on first use and
+/// shared by every benchmark after it: `World` has an `OfficeSpec spec`, which is set to a
+/// size_m x size_m floor before `build(World&)` fills in the rest. One cache per World type
+/// and `build` (each call site's lambda is its own type).
+template <class World, class Build>
+World& world_of_size(int size_m, Build build) {
+  static std::map<int, std::unique_ptr<World>> worlds;
+  std::unique_ptr<World>& w = worlds[size_m];
+  if (!w) {
+    w = std::make_unique<World>();
+    w->spec.width_m = w->spec.height_m = size_m;
+    build(*w);
+  }
+  return *w;
+}
+
+/// The likelihood table of `kind` for `grid` with the engine's default beam model and
+/// table options, except that oriented tables stay oriented even for near-isotropic
+/// kernels (isotropy_tolerance 0), so each kind is measured as itself.
+inline std::shared_ptr<const maps::LikelihoodField> make_table(const maps::OccupancyGrid& grid,
+                                                               maps::TableKind kind) {
+  const LocalizerConfig defaults;
+  maps::LikelihoodFieldOptions opt = defaults.likelihood.table;
+  opt.kind = kind;
+  opt.isotropy_tolerance = 0.0;
+  return std::make_shared<const maps::LikelihoodField>(grid, defaults.likelihood.beam, opt);
+}
+
 /// Centre of room (i, j) (map-local metres); free by construction.
 inline Pose2 room_centre(const OfficeSpec& s, int i, int j, double theta = 0.3) {
   const double pitch =
@@ -206,22 +238,6 @@ inline std::vector<std::string> split_list(const std::string& s) {
     b = e + 1;
   }
   return out;
-}
-
-/// Removes `--name=value` from argv (before benchmark::Initialize sees it); returns whether
-/// it was present.
-inline bool take_flag(int& argc, char** argv, const std::string& name, std::string& value) {
-  const std::string prefix = "--" + name + "=";
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a.rfind(prefix, 0) == 0) {
-      value = a.substr(prefix.size());
-      for (int j = i; j + 1 < argc; ++j) argv[j] = argv[j + 1];
-      --argc;
-      return true;
-    }
-  }
-  return false;
 }
 
 /// Least-squares slope of log(y) against log(x): the scaling exponent.

@@ -1,18 +1,47 @@
 #pragma once
-/// Console reporter that also keeps the runs, and a CSV writer for them: every benchmark
-/// binary prints Google Benchmark's console table and, with --out=DIR, writes its figures.
+/// The frame every bench/*_bench.cpp main() shares: its own --name=value flags taken out
+/// before Google Benchmark parses the rest, a console reporter that also keeps the runs,
+/// and a CSV writer for them (with --out=DIR every binary writes its figures).
 
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
+#include <initializer_list>
 #include <map>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pgmcl::bench {
+
+/// Removes `--name=value` from argv (before benchmark::Initialize sees it); returns whether
+/// it was present.
+inline bool take_flag(int& argc, char** argv, const std::string& name, std::string& value) {
+  const std::string prefix = "--" + name + "=";
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a.rfind(prefix, 0) == 0) {
+      value = a.substr(prefix.size());
+      for (int j = i; j + 1 < argc; ++j) argv[j] = argv[j + 1];
+      --argc;
+      return true;
+    }
+  }
+  return false;
+}
+
+/// Takes each of `flags` (`--name=value`; an absent one keeps the string's default) out of
+/// argv, then initialises Google Benchmark with the rest. False when an argument is left
+/// that neither knows (main then exits with 2).
+inline bool init_benchmark(int& argc, char** argv,
+                           std::initializer_list<std::pair<const char*, std::string*>> flags) {
+  for (const auto& [name, value] : flags) take_flag(argc, argv, name, *value);
+  benchmark::Initialize(&argc, argv);
+  return !benchmark::ReportUnrecognizedArguments(argc, argv);
+}
 
 class CollectingReporter : public benchmark::ConsoleReporter {
  public:
@@ -60,6 +89,25 @@ inline bool write_runs_csv(const std::string& path,
     std::fprintf(f, "\n");
   }
   return std::fclose(f) == 0;
+}
+
+/// Runs every registered benchmark (console table on stdout) and returns the runs.
+inline std::vector<benchmark::BenchmarkReporter::Run> run_benchmarks() {
+  CollectingReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  benchmark::Shutdown();
+  return std::move(reporter.kept);
+}
+
+/// With --out=DIR (`out` not empty) writes the runs to DIR/<stem>_t<threads>.csv. Returns
+/// main's exit code: 1, with a message, when the file cannot be written.
+inline int finish_csv(const std::string& out, const std::string& stem,
+                      const std::vector<benchmark::BenchmarkReporter::Run>& runs, int omp_threads) {
+  if (out.empty() || write_runs_csv(out + "/" + stem + "_t" + std::to_string(omp_threads) + ".csv",
+                                    runs, omp_threads))
+    return 0;
+  std::fprintf(stderr, "%s_bench: cannot write to %s\n", stem.c_str(), out.c_str());
+  return 1;
 }
 
 }  // namespace pgmcl::bench

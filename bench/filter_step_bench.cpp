@@ -43,35 +43,24 @@ struct World {
 };
 
 World& world(int size_m) {
-  static std::map<int, std::unique_ptr<World>> worlds;
-  auto& w = worlds[size_m];
-  if (!w) {
-    w = std::make_unique<World>();
-    w->spec.width_m = w->spec.height_m = size_m;
-    w->grid = pb::make_office(w->spec);
-    w->free_cells = pgmcl::free_cell_indices(w->grid);
-    const pgmcl::sims::RayCaster caster(w->grid);
-    const pgmcl::Pose2 c = pb::room_centre(w->spec, 0, 0);
+  return pb::world_of_size<World>(size_m, [](World& w) {
+    w.grid = pb::make_office(w.spec);
+    w.free_cells = pgmcl::free_cell_indices(w.grid);
+    const pgmcl::sims::RayCaster caster(w.grid);
+    const pgmcl::Pose2 c = pb::room_centre(w.spec, 0, 0);
     for (int k = 0; k < kLoopPoses; ++k) {
       const double a = 2.0 * std::numbers::pi * k / kLoopPoses;
       const pgmcl::Pose2 p{c.x + 0.45 * std::cos(a), c.y + 0.45 * std::sin(a),
                            pgmcl::wrap_angle(a + std::numbers::pi / 2)};
-      w->poses.push_back(p);
-      w->scans.push_back(pb::cast_scan(caster, p, 1081, 0.01, 100 + k));
+      w.poses.push_back(p);
+      w.scans.push_back(pb::cast_scan(caster, p, 1081, 0.01, 100 + k));
     }
-  }
-  return *w;
+  });
 }
 
 std::shared_ptr<const pgmcl::maps::LikelihoodField> field(World& w, TableKind kind) {
   auto& f = w.fields[static_cast<int>(kind)];
-  if (!f) {
-    pgmcl::maps::LikelihoodFieldOptions opt;
-    opt.kind = kind;
-    opt.isotropy_tolerance = 0.0;
-    f = std::make_shared<const pgmcl::maps::LikelihoodField>(
-        w.grid, pgmcl::LocalizerConfig{}.likelihood.beam, opt);
-  }
+  if (!f) f = pb::make_table(w.grid, kind);
   return f;
 }
 
@@ -124,13 +113,13 @@ void step(benchmark::State& state, TableKind kind, int size_m, std::size_t n, st
 int main(int argc, char** argv) {
   std::string out, particles = "1000,5000,20000", beams = "60,270,1081",
                    kinds = "isotropic,oriented,offset", size = "50";
-  pb::take_flag(argc, argv, "out", out);
-  pb::take_flag(argc, argv, "particles", particles);
-  pb::take_flag(argc, argv, "beams", beams);
-  pb::take_flag(argc, argv, "kinds", kinds);
-  pb::take_flag(argc, argv, "size", size);
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
+  if (!pb::init_benchmark(argc, argv,
+                          {{"out", &out},
+                           {"particles", &particles},
+                           {"beams", &beams},
+                           {"kinds", &kinds},
+                           {"size", &size}}))
+    return 2;
   const int size_m = std::stoi(size);
   for (const auto& k : pb::split_list(kinds)) {
     const TableKind kind = pgmcl::maps::table_kind_from_string(k);
@@ -142,24 +131,17 @@ int main(int argc, char** argv) {
             ->Unit(benchmark::kMillisecond);
       }
   }
-  pb::CollectingReporter reporter;
-  benchmark::RunSpecifiedBenchmarks(&reporter);
-  benchmark::Shutdown();
+  const auto runs = pb::run_benchmarks();
   const int t = pb::omp_threads();
   std::printf(
       "\nFilter step (OMP threads = %d), ms per update: total = motion + measure + "
       "estimate + resample (+ bookkeeping)\n",
       t);
-  for (const auto& r : reporter.kept) {
+  for (const auto& r : runs) {
     const auto c = [&](const char* k) { return r.counters.at(k).value; };
     std::printf("  %-44s %8.3f = %7.3f + %7.3f + %7.3f + %7.3f\n", r.run_name.function_name.c_str(),
                 pb::seconds_per_iteration(r) * 1e3, c("motion_ms"), c("measure_ms"),
                 c("estimate_ms"), c("resample_ms"));
   }
-  if (!out.empty() &&
-      !pb::write_runs_csv(out + "/filter_step_t" + std::to_string(t) + ".csv", reporter.kept, t)) {
-    std::fprintf(stderr, "filter_step_bench: cannot write to %s\n", out.c_str());
-    return 1;
-  }
-  return 0;
+  return pb::finish_csv(out, "filter_step", runs, t);
 }

@@ -68,26 +68,15 @@ struct World {
 };
 
 World& world(int size_m) {
-  static std::map<int, std::unique_ptr<World>> worlds;
-  auto& w = worlds[size_m];
-  if (!w) {
-    w = std::make_unique<World>();
-    w->spec.width_m = w->spec.height_m = size_m;
-    w->grid = pb::make_office(w->spec);
-    w->caster = std::make_unique<pgmcl::sims::RayCaster>(w->grid);
-  }
-  return *w;
+  return pb::world_of_size<World>(size_m, [](World& w) {
+    w.grid = pb::make_office(w.spec);
+    w.caster = std::make_unique<pgmcl::sims::RayCaster>(w.grid);
+  });
 }
 
 const pgmcl::maps::LikelihoodField& field(World& w, TableKind kind) {
   auto& f = w.fields[static_cast<int>(kind)];
-  if (!f) {
-    pgmcl::maps::LikelihoodFieldOptions opt;
-    opt.kind = kind;
-    opt.isotropy_tolerance = 0.0;  // keep the oriented tables even for near-isotropic kernels
-    f = std::make_shared<const pgmcl::maps::LikelihoodField>(
-        w.grid, pgmcl::LocalizerConfig{}.likelihood.beam, opt);
-  }
+  if (!f) f = pb::make_table(w.grid, kind);
   return *f;
 }
 
@@ -190,14 +179,14 @@ std::vector<int> parse_ints(const std::string& s) {
 int main(int argc, char** argv) {
   std::string out, sizes = "10,50,200", particles = "1000,5000,20000", beams = "60,270,1081",
                    kinds = "isotropic,oriented,offset", patterns = "tracking,global";
-  pb::take_flag(argc, argv, "out", out);
-  pb::take_flag(argc, argv, "sizes", sizes);
-  pb::take_flag(argc, argv, "particles", particles);
-  pb::take_flag(argc, argv, "beams", beams);
-  pb::take_flag(argc, argv, "kinds", kinds);
-  pb::take_flag(argc, argv, "patterns", patterns);
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
+  if (!pb::init_benchmark(argc, argv,
+                          {{"out", &out},
+                           {"sizes", &sizes},
+                           {"particles", &particles},
+                           {"beams", &beams},
+                           {"kinds", &kinds},
+                           {"patterns", &patterns}}))
+    return 2;
 
   std::vector<TableKind> kind_list;
   for (const auto& k : pb::split_list(kinds))
@@ -232,13 +221,11 @@ int main(int argc, char** argv) {
     }
   }
 
-  pb::CollectingReporter reporter;
-  benchmark::RunSpecifiedBenchmarks(&reporter);
-  benchmark::Shutdown();
+  const auto runs = pb::run_benchmarks();
 
   // ---- Summary: ratios and scaling exponents. ----
   std::map<std::string, Result> res;
-  for (const auto& r : reporter.kept) {
+  for (const auto& r : runs) {
     Result& x = res[r.run_name.function_name];
     x.seconds += pb::seconds_per_iteration(r);
     x.evals += r.counters.count("beam_evals") ? r.counters.at("beam_evals").value : 0.0;
@@ -308,44 +295,31 @@ int main(int argc, char** argv) {
   std::printf("\nScaling exponents of update time (log-log least squares; 1 = linear):\n");
   std::printf("%-10s %6s  %-28s %-28s\n", "kind", "map_m", "vs particles (at beams ...)",
               "vs beams (at particles ...)");
-  std::vector<TableKind> ks = kind_list;
-  for (const TableKind k : ks) {
+  // One cell of the table: the exponent against particles (at `fixed` beams) or against
+  // beams used (at `fixed` particles), also written to the scaling CSV.
+  const auto exponent = [&](TableKind k, int size, bool vs_particles, int fixed) {
+    std::vector<double> xs, ys;
+    for (const int v : parse_ints(vs_particles ? particles : beams)) {
+      const int n = vs_particles ? v : fixed, bm = vs_particles ? fixed : v;
+      const auto it = res.find(name_of({false, k, size, static_cast<std::size_t>(n), bm, false}));
+      if (it == res.end()) continue;
+      xs.push_back(vs_particles ? n : it->second.beams_used);
+      ys.push_back(it->second.seconds);
+    }
+    const double e = pb::loglog_slope(xs, ys);
+    if (scsv && xs.size() >= 2)
+      std::fprintf(scsv, "%s,tracking,%d,%s,%s=%d,%.4f,%zu\n", pgmcl::maps::to_string(k), size,
+                   vs_particles ? "particles" : "beams", vs_particles ? "beams" : "particles",
+                   fixed, e, xs.size());
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.2f@%d ", e, fixed);
+    return std::string(buf);
+  };
+  for (const TableKind k : kind_list) {
     for (const int size : parse_ints(sizes)) {
       std::string a, b;
-      for (const int bm : parse_ints(beams)) {
-        std::vector<double> xs, ys;
-        for (const int n : parse_ints(particles)) {
-          const auto it =
-              res.find(name_of({false, k, size, static_cast<std::size_t>(n), bm, false}));
-          if (it == res.end()) continue;
-          xs.push_back(n);
-          ys.push_back(it->second.seconds);
-        }
-        const double e = pb::loglog_slope(xs, ys);
-        char buf[64];
-        std::snprintf(buf, sizeof buf, "%.2f@%d ", e, bm);
-        a += buf;
-        if (scsv && xs.size() >= 2)
-          std::fprintf(scsv, "%s,tracking,%d,particles,beams=%d,%.4f,%zu\n",
-                       pgmcl::maps::to_string(k), size, bm, e, xs.size());
-      }
-      for (const int n : parse_ints(particles)) {
-        std::vector<double> xs, ys;
-        for (const int bm : parse_ints(beams)) {
-          const auto it =
-              res.find(name_of({false, k, size, static_cast<std::size_t>(n), bm, false}));
-          if (it == res.end()) continue;
-          xs.push_back(it->second.beams_used);
-          ys.push_back(it->second.seconds);
-        }
-        const double e = pb::loglog_slope(xs, ys);
-        char buf[64];
-        std::snprintf(buf, sizeof buf, "%.2f@%d ", e, n);
-        b += buf;
-        if (scsv && xs.size() >= 2)
-          std::fprintf(scsv, "%s,tracking,%d,beams,particles=%d,%.4f,%zu\n",
-                       pgmcl::maps::to_string(k), size, n, e, xs.size());
-      }
+      for (const int bm : parse_ints(beams)) a += exponent(k, size, true, bm);
+      for (const int n : parse_ints(particles)) b += exponent(k, size, false, n);
       std::printf("%-10s %6d  %-28s %-28s\n", pgmcl::maps::to_string(k), size, a.c_str(),
                   b.c_str());
     }

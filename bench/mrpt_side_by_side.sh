@@ -18,28 +18,18 @@
 # the pgmcl/MRPT time ratio.
 set -euo pipefail
 
-here=$(cd "$(dirname "$0")" && pwd)
-root=$(dirname "$here")
-data="$root/../shared/data"
+source "$(dirname "$0")/common.sh"
+bench_full_options=1
 out="$root/results/bench/mrpt"
-build="$root/build-bench"
 particles="1000 5000"
 beams=90
-only=""
-full=0
 passthrough=()
 while [[ $# -gt 0 ]]; do
   case "$1" in
-    --data) data=$2; shift 2 ;;
-    --out) out=$2; shift 2 ;;
-    --build) build=$2; shift 2 ;;
     --particles) particles=$2; shift 2 ;;
     --beams) beams=$2; shift 2 ;;
-    --only) only=$2; shift 2 ;;
-    --full) full=1; shift ;;
     --) shift; passthrough=("$@"); break ;;
-    -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
-    *) echo "mrpt_side_by_side.sh: unknown option $1 (see --help)" >&2; exit 2 ;;
+    *) bench_option "$@"; shift "$bench_shift" ;;
   esac
 done
 
@@ -48,13 +38,8 @@ if ! ls /usr/lib/*/cmake/mrpt-slam/mrpt-slam-config.cmake >/dev/null 2>&1; then
   echo "  To run it: apt-get install mrpt-apps libmrpt-dev   (then re-run this script)"
   exit 0
 fi
-if [[ ! -f "$build/CMakeCache.txt" ]]; then
-  cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DPGMCL_BUILD_BENCH=ON \
-    -DPGMCL_BUILD_TESTS=OFF >/dev/null
-else
-  cmake "$build" >/dev/null  # pick up a newly installed libmrpt-dev
-fi
-cmake --build "$build" -j2 --target pgmcl pgmcl_sweep pgmcl_mrpt_harness >/dev/null
+bench_configure refresh  # pick up a newly installed libmrpt-dev
+bench_build pgmcl pgmcl_sweep pgmcl_mrpt_harness
 harness="$build/bench/pgmcl_mrpt_harness"
 sweep="$build/bench/pgmcl_sweep"
 pgmcl="$build/pgmcl"
@@ -69,7 +54,6 @@ pg_csv="$out/pgmcl_rows.csv"
 rm -f "$csv" "$pg_csv"
 log="$out/side_by_side.txt"
 : >"$log"
-want() { [[ -z "$only" || ",$only," == *",$1,"* ]]; }
 max_scans=1200
 [[ $full -eq 1 ]] && max_scans=0
 

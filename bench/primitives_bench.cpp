@@ -37,20 +37,15 @@ struct CastWorld {
 };
 
 CastWorld& cast_world(int size_m) {
-  static std::map<int, std::unique_ptr<CastWorld>> worlds;
-  auto& w = worlds[size_m];
-  if (!w) {
-    w = std::make_unique<CastWorld>();
-    w->spec.width_m = w->spec.height_m = size_m;
-    const auto grid = pb::make_office(w->spec);
-    w->caster = std::make_unique<pgmcl::sims::RayCaster>(grid);
+  return pb::world_of_size<CastWorld>(size_m, [size_m](CastWorld& w) {
+    const auto grid = pb::make_office(w.spec);
+    w.caster = std::make_unique<pgmcl::sims::RayCaster>(grid);
     const int rooms =
-        std::max(1, static_cast<int>((size_m - 2 * w->spec.margin) / pb::room_pitch(w->spec)));
+        std::max(1, static_cast<int>((size_m - 2 * w.spec.margin) / pb::room_pitch(w.spec)));
     for (int i = 0; i < std::min(rooms, 4); ++i)
       for (int j = 0; j < std::min(rooms, 4); ++j)
-        w->poses.push_back(pb::room_centre(w->spec, i, j, 0.1 * (i + 4 * j)));
-  }
-  return *w;
+        w.poses.push_back(pb::room_centre(w.spec, i, j, 0.1 * (i + 4 * j)));
+  });
 }
 
 void raycast(benchmark::State& state, int size_m) {
@@ -141,9 +136,7 @@ void kld(benchmark::State& state, std::size_t n, double spread) {
 
 int main(int argc, char** argv) {
   std::string out;
-  pb::take_flag(argc, argv, "out", out);
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
+  if (!pb::init_benchmark(argc, argv, {{"out", &out}})) return 2;
   for (const int s : {10, 50, 200})
     benchmark::RegisterBenchmark(("raycast/1081beams/map:" + std::to_string(s) + "m").c_str(),
                                  raycast, s)
@@ -162,14 +155,5 @@ int main(int argc, char** argv) {
           ->UseRealTime()
           ->Unit(benchmark::kMicrosecond);
     }
-  pb::CollectingReporter reporter;
-  benchmark::RunSpecifiedBenchmarks(&reporter);
-  benchmark::Shutdown();
-  const int t = pb::omp_threads();
-  if (!out.empty() &&
-      !pb::write_runs_csv(out + "/primitives_t" + std::to_string(t) + ".csv", reporter.kept, t)) {
-    std::fprintf(stderr, "primitives_bench: cannot write to %s\n", out.c_str());
-    return 1;
-  }
-  return 0;
+  return pb::finish_csv(out, "primitives", pb::run_benchmarks(), pb::omp_threads());
 }

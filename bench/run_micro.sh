@@ -13,31 +13,22 @@
 # Full run: roughly 15-25 min on a quiet 2-core machine (the 200 m tables dominate setup).
 set -euo pipefail
 
-here=$(cd "$(dirname "$0")" && pwd)
-root=$(dirname "$here")
+source "$(dirname "$0")/common.sh"
 out="$root/results/bench/micro"
-build="$root/build-bench"
 thread_list="1 2"
 quick=0
 extra=()
 while [[ $# -gt 0 ]]; do
   case "$1" in
-    --out) out=$2; shift 2 ;;
-    --build) build=$2; shift 2 ;;
     --threads) thread_list=$2; shift 2 ;;
     --quick) quick=1; shift ;;
     --) shift; extra=("$@"); break ;;
-    -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
-    *) echo "run_micro.sh: unknown option $1 (see --help)" >&2; exit 2 ;;
+    *) bench_option "$@"; shift "$bench_shift" ;;
   esac
 done
 
-if [[ ! -f "$build/CMakeCache.txt" ]]; then
-  cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DPGMCL_BUILD_BENCH=ON \
-    -DPGMCL_BUILD_TESTS=OFF >/dev/null
-fi
 targets=(measurement_bench table_build_bench primitives_bench filter_step_bench)
-cmake --build "$build" -j2 --target "${targets[@]}" >/dev/null
+bench_build "${targets[@]}"
 mkdir -p "$out"
 
 declare -A args

@@ -19,34 +19,20 @@
 # kind; on sim-office and intel also the skip-switch study. Small sweep: ~10 min on 2 cores.
 set -euo pipefail
 
-here=$(cd "$(dirname "$0")" && pwd)
-root=$(dirname "$here")
-data="$root/../shared/data"
+source "$(dirname "$0")/common.sh"
+bench_full_options=1
 out="$root/results/bench/sweep"
-build="$root/build-bench"
 threads=1
-full=0
-only=""
 passthrough=()
 while [[ $# -gt 0 ]]; do
   case "$1" in
-    --data) data=$2; shift 2 ;;
-    --out) out=$2; shift 2 ;;
-    --build) build=$2; shift 2 ;;
     --threads) threads=$2; shift 2 ;;
-    --full) full=1; shift ;;
-    --only) only=$2; shift 2 ;;
     --) shift; passthrough=("$@"); break ;;
-    -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
-    *) echo "sweep.sh: unknown option $1 (see --help)" >&2; exit 2 ;;
+    *) bench_option "$@"; shift "$bench_shift" ;;
   esac
 done
 
-if [[ ! -f "$build/CMakeCache.txt" ]]; then
-  cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DPGMCL_BUILD_BENCH=ON \
-    -DPGMCL_BUILD_TESTS=OFF >/dev/null
-fi
-cmake --build "$build" -j2 --target pgmcl pgmcl_sweep >/dev/null
+bench_build pgmcl pgmcl_sweep
 sweep="$build/bench/pgmcl_sweep"
 pgmcl="$build/pgmcl"
 
@@ -65,8 +51,6 @@ fi
 csail_motion=0.05,0.01,0.02,0.005
 common=(--particles "$particles" --beams "$beams" --threads "$threads" --csv "$csv"
   "${passthrough[@]}")
-
-want() { [[ -z "$only" || ",$only," == *",$1,"* ]]; }
 
 run() {  # run <label> <args...>
   echo "== $1" | tee -a "$log"

@@ -59,11 +59,8 @@ void build(benchmark::State& state, TableKind kind, int w_m, int h_m) {
 
 int main(int argc, char** argv) {
   std::string out, sizes = "10x10,50x50,200x200,200x600", kinds = "isotropic,oriented,offset";
-  pb::take_flag(argc, argv, "out", out);
-  pb::take_flag(argc, argv, "sizes", sizes);
-  pb::take_flag(argc, argv, "kinds", kinds);
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
+  if (!pb::init_benchmark(argc, argv, {{"out", &out}, {"sizes", &sizes}, {"kinds", &kinds}}))
+    return 2;
 
   for (const auto& k : pb::split_list(kinds)) {
     const TableKind kind = pgmcl::maps::table_kind_from_string(k);
@@ -78,25 +75,18 @@ int main(int argc, char** argv) {
           ->Unit(benchmark::kMillisecond);
     }
   }
-  pb::CollectingReporter reporter;
-  benchmark::RunSpecifiedBenchmarks(&reporter);
-  benchmark::Shutdown();
+  const auto runs = pb::run_benchmarks();
 
   const int t = pb::omp_threads();
   std::printf(
       "\nTable build (OMP threads = %d; peers ~22 s at 200x600 m, target < 3 s on 2 "
       "cores):\n",
       t);
-  for (const auto& r : reporter.kept) {
+  for (const auto& r : runs) {
     const double s = pb::seconds_per_iteration(r);
     const double cells = r.counters.at("cells").value;
     std::printf("  %-40s %9.3f s  %7.1f Mcells/s  %8.1f MB\n", r.run_name.function_name.c_str(), s,
                 cells / s / 1e6, r.counters.at("table_MB").value);
   }
-  if (!out.empty() &&
-      !pb::write_runs_csv(out + "/table_build_t" + std::to_string(t) + ".csv", reporter.kept, t)) {
-    std::fprintf(stderr, "table_build_bench: cannot write to %s\n", out.c_str());
-    return 1;
-  }
-  return 0;
+  return pb::finish_csv(out, "table_build", runs, t);
 }

@@ -2,9 +2,9 @@
 /// standard proposal, systematic resampling, ESS threshold 0.5, fixed particle count) run
 /// on exactly the data pgmcl_sweep uses: the same map (converted cell by cell), the same
 /// scans (beam angles set from the scan, not from carmen2rawlog's PARAM guess), the same
-/// stamps and the same (perturbed) odometry, via the same loader (sweep_data.hpp). It
-/// writes the trajectory-level figures the pf-localization app cannot: time per update
-/// and ATE against the truth.
+/// stamps and the same (perturbed) odometry, via the same loader and options
+/// (sweep_data.hpp, macro_common.hpp). It writes the trajectory-level figures the
+/// pf-localization app cannot: time per update and ATE against the truth.
 ///
 /// Matching choices (PEERS.md pitfalls):
 ///  - beam layout: MRPT spreads N beams over `aperture` symmetrically about the sensor's x
@@ -36,11 +36,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "../macro_common.hpp"
 #include "../sweep/sweep_data.hpp"
 #include "pgmcl/mcl/beam_selection.hpp"
 #include "pgmcl/mcl/localizer_config.hpp"
@@ -51,17 +52,12 @@ namespace pb = pgmcl::bench;
 int main(int argc, char** argv) {
   CLI::App app{"pgmcl_mrpt_harness: MRPT's MCL on pgmcl_sweep's data"};
   std::string name = "dataset", csv_path;
-  pb::LogSource src;
-  std::uint64_t perturb_seed = 0;
+  pb::LogOptions log_options;
   std::size_t particles = 1000, beams = 90;
   double std_hit = 0.1, max_corrs = 0.3;
   std::uint64_t seed = 1;
   app.add_option("--name", name, "Dataset label")->required();
-  app.add_option("--map", src.map_yaml, "Map YAML")->required()->check(CLI::ExistingFile);
-  app.add_option("--log", src.log, "CARMEN log")->required()->check(CLI::ExistingFile);
-  app.add_option("--truth", src.truth_log, "Corrected CARMEN log (default: --log)");
-  app.add_option("--perturb", perturb_seed, "Synthesise odometry from the truth with this seed");
-  app.add_option("--max-scans", src.max_scans, "First N scans only (0 = all)");
+  log_options.add_to(app, /*required=*/true);
   app.add_option("--particles", particles, "Particle count (fixed)");
   app.add_option("--beams", beams, "Beams per update (LF_decimation = readings / beams)");
   app.add_option("--std-hit", std_hit, "LF_stdHit, metres");
@@ -73,12 +69,9 @@ int main(int argc, char** argv) {
                  "A1,A2,A3,A4 as pgmcl_sweep's (Table 5.6 variance form), mapped to MRPT's "
                  "Gaussian model");
   CLI11_PARSE(app, argc, argv);
-  if (src.truth_log.empty()) src.truth_log = src.log;
-  if (perturb_seed != 0) {
-    src.perturb = true;
-    src.perturb_seed = perturb_seed;
-  }
-  const pb::Dataset d = pb::load_log_dataset(name, src);
+  const std::optional<pb::LogSource> src = log_options.source("pgmcl_mrpt_harness");
+  if (!src) return 2;
+  const pb::Dataset d = pb::load_log_dataset(name, *src);
   const pgmcl::maps::OccupancyGrid& g = d.grid;
   if (std::abs(g.origin().theta) > 1e-12) {
     std::fprintf(stderr, "pgmcl_mrpt_harness: rotated map origins are not supported\n");
@@ -136,8 +129,7 @@ int main(int argc, char** argv) {
   mrpt::obs::CActionRobotMovement2D::TMotionModelOptions mm;
   mm.modelSelection = mrpt::obs::CActionRobotMovement2D::mmGaussian;
   pgmcl::MotionNoise n = pgmcl::LocalizerConfig{}.motion.noise;
-  if (!motion_s.empty() &&
-      std::sscanf(motion_s.c_str(), "%lf,%lf,%lf,%lf", &n.a1, &n.a2, &n.a3, &n.a4) != 4) {
+  if (!motion_s.empty() && !pb::parse_alphas(motion_s, n)) {
     std::fprintf(stderr, "pgmcl_mrpt_harness: --motion-noise needs A1,A2,A3,A4\n");
     return 2;
   }
@@ -188,15 +180,8 @@ int main(int argc, char** argv) {
     sq += e * e;
     ate_max = std::max(ate_max, e);
   }
-  double sum = 0;
-  for (double v : update_ms) sum += v;
-  const double mean_ms = sum / static_cast<double>(update_ms.size());
-  std::vector<double> sorted = update_ms;
-  std::sort(sorted.begin(), sorted.end());
-  const double p95 =
-      sorted[std::max<std::size_t>(1, static_cast<std::size_t>(
-                                          std::ceil(0.95 * static_cast<double>(sorted.size())))) -
-             1];
+  const pb::TimeSummary times = pb::summarize_times(update_ms);
+  const double mean_ms = times.mean, p95 = times.p95;
   const double ate = std::sqrt(sq / static_cast<double>(d.scans.size()));
   std::printf(
       "mrpt %s: %zu particles, %.0f beams (decimation %u), %zu updates: %.3f ms/update "
@@ -204,17 +189,12 @@ int main(int argc, char** argv) {
       name.c_str(), particles, used_beams, decimation, update_ms.size(), mean_ms, p95, ate, ate_max,
       shift_x, shift_y);
   if (!csv_path.empty()) {
-    const bool fresh =
-        !std::filesystem::exists(csv_path) || std::filesystem::file_size(csv_path) == 0;
-    std::FILE* f = std::fopen(csv_path.c_str(), "a");
-    if (!f) {
-      std::fprintf(stderr, "pgmcl_mrpt_harness: cannot write %s\n", csv_path.c_str());
-      return 1;
-    }
-    if (fresh)
-      std::fprintf(f,
-                   "dataset,engine,particles,beams_used,updates,update_ms_mean,update_ms_p95,"
-                   "ate_rmse_m,ate_max_m\n");
+    std::FILE* f = pb::open_csv_for_append(
+        csv_path,
+        "dataset,engine,particles,beams_used,updates,update_ms_mean,update_ms_p95,"
+        "ate_rmse_m,ate_max_m",
+        "pgmcl_mrpt_harness");
+    if (!f) return 1;
     std::fprintf(f, "%s,mrpt,%zu,%.0f,%zu,%.4f,%.4f,%.5f,%.4f\n", name.c_str(), particles,
                  used_beams, update_ms.size(), mean_ms, p95, ate, ate_max);
     std::fclose(f);

@@ -20,13 +20,15 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <map>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "../bench_common.hpp"
+#include "../macro_common.hpp"
 #include "pgmcl/mcl/localizer.hpp"
 #include "sweep_data.hpp"
 
@@ -111,13 +113,9 @@ RunResult run_one(const pb::Dataset& d, std::shared_ptr<const pgmcl::maps::Likel
   r.ate_rmse = std::sqrt(sq / n);
   r.heading_rmse_deg = std::sqrt(sq_h / n) * 180.0 / std::numbers::pi;
   if (!update_ms.empty()) {
-    double s = 0;
-    for (double v : update_ms) s += v;
-    r.update_ms_mean = s / static_cast<double>(update_ms.size());
-    std::sort(update_ms.begin(), update_ms.end());
-    const auto rank =
-        static_cast<std::size_t>(std::ceil(0.95 * static_cast<double>(update_ms.size())));
-    r.update_ms_p95 = update_ms[std::max<std::size_t>(rank, 1) - 1];
+    const pb::TimeSummary t = pb::summarize_times(update_ms);
+    r.update_ms_mean = t.mean;
+    r.update_ms_p95 = t.p95;
     r.particles_mean = particles / static_cast<double>(update_ms.size());
     r.beams_used_mean = beams / static_cast<double>(update_ms.size());
   }
@@ -145,25 +143,17 @@ const char* on_off(bool b) {
 int main(int argc, char** argv) {
   CLI::App app{"pgmcl_sweep: run time against localisation error for one dataset"};
   std::string name = "dataset", csv_path = "sweep.csv", sim_size;
-  pb::LogSource src;
+  pb::LogOptions log_options;
   pb::SimSource sim;
   std::string particles_s = "500,2000,5000", beams_s = "30,60,120",
-              kinds_s = "isotropic,oriented,offset", noise_s;
+              kinds_s = "isotropic,oriented,offset";
   bool switches = false;
   std::size_t switch_seeds = 3, switch_particles = 2000, switch_beams = 60;
   int threads = 1;
   bool recovery = pgmcl::RecoveryConfig{}.enabled;
   std::string motion_s;
-  std::uint64_t perturb_seed = 0;
   app.add_option("--name", name, "Dataset label in the CSV")->required();
-  app.add_option("--map", src.map_yaml, "Map YAML")->check(CLI::ExistingFile);
-  app.add_option("--log", src.log, "CARMEN log with scans and odometry")->check(CLI::ExistingFile);
-  app.add_option("--truth", src.truth_log, "Corrected CARMEN log (truth); default: --log")
-      ->check(CLI::ExistingFile);
-  app.add_option("--perturb", perturb_seed,
-                 "Replace the log's odometry by noisy odometry from the truth with this seed");
-  app.add_option("--odom-noise", noise_s, "A1,A2,A3,A4 for --perturb (Table 5.6 variance form)");
-  app.add_option("--max-scans", src.max_scans, "Use only the first N scans (0 = all)");
+  log_options.add_to(app, /*required=*/false);
   app.add_option("--sim", sim_size,
                  "Simulate a random walk in a synthetic office of this side (m)");
   app.add_option("--sim-duration", sim.duration_s, "Seconds of simulated driving");
@@ -182,8 +172,7 @@ int main(int argc, char** argv) {
   app.add_option("--csv", csv_path, "Append rows here");
   CLI11_PARSE(app, argc, argv);
   pgmcl::MotionNoise motion = pgmcl::LocalizerConfig{}.motion.noise;
-  if (!motion_s.empty() && std::sscanf(motion_s.c_str(), "%lf,%lf,%lf,%lf", &motion.a1, &motion.a2,
-                                       &motion.a3, &motion.a4) != 4) {
+  if (!motion_s.empty() && !pb::parse_alphas(motion_s, motion)) {
     std::fprintf(stderr, "pgmcl_sweep: --motion-noise needs A1,A2,A3,A4\n");
     return 2;
   }
@@ -194,27 +183,13 @@ int main(int argc, char** argv) {
     sim.size_m = std::stod(sim_size);
     d = pb::simulate_dataset(name, sim);
   } else {
-    if (src.map_yaml.empty() || src.log.empty()) {
+    if (log_options.src.map_yaml.empty() || log_options.src.log.empty()) {
       std::fprintf(stderr, "pgmcl_sweep: need --map and --log (or --sim)\n");
       return 2;
     }
-    if (src.truth_log.empty()) src.truth_log = src.log;
-    if (perturb_seed != 0) {
-      src.perturb = true;
-      src.perturb_seed = perturb_seed;
-    }
-    if (!noise_s.empty()) {
-      double v[4];
-      if (std::sscanf(noise_s.c_str(), "%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], &v[3]) != 4) {
-        std::fprintf(stderr, "pgmcl_sweep: --odom-noise needs A1,A2,A3,A4\n");
-        return 2;
-      }
-      src.odom_noise.a1 = v[0];
-      src.odom_noise.a2 = v[1];
-      src.odom_noise.a3 = v[2];
-      src.odom_noise.a4 = v[3];
-    }
-    d = pb::load_log_dataset(name, src);
+    const std::optional<pb::LogSource> src = log_options.source("pgmcl_sweep");
+    if (!src) return 2;
+    d = pb::load_log_dataset(name, *src);
   }
   // Dead reckoning from the true start: the error the filter has to remove.
   double odo_sq = 0;
@@ -235,11 +210,7 @@ int main(int argc, char** argv) {
   const auto field = [&](TableKind k) {
     auto& f = fields[static_cast<int>(k)];
     if (!f) {
-      pgmcl::LocalizerConfig cfg;
-      cfg.likelihood.table.kind = k;
-      cfg.likelihood.table.isotropy_tolerance = 0.0;  // keep oriented tables as oriented
-      f = std::make_shared<const pgmcl::maps::LikelihoodField>(d.grid, cfg.likelihood.beam,
-                                                               cfg.likelihood.table);
+      f = pb::make_table(d.grid, k);
       std::printf("  table %-10s built in %.2f s (%.0f MB)\n", pgmcl::maps::to_string(k),
                   f->stats().build_seconds, static_cast<double>(f->stats().bytes) / 1e6);
     }
@@ -326,18 +297,13 @@ int main(int argc, char** argv) {
     }
   }
 
-  const bool fresh =
-      !std::filesystem::exists(csv_path) || std::filesystem::file_size(csv_path) == 0;
-  std::FILE* f = std::fopen(csv_path.c_str(), "a");
-  if (!f) {
-    std::fprintf(stderr, "pgmcl_sweep: cannot write %s\n", csv_path.c_str());
-    return 1;
-  }
-  if (fresh)
-    std::fprintf(f,
-                 "dataset,study,kind,particles,beams,gating,selective,kld,subsample,seed,threads,"
-                 "scans,updates,ms_per_scan,update_ms_mean,update_ms_p95,particles_mean,"
-                 "beams_used_mean,ate_rmse_m,ate_max_m,heading_rmse_deg,pareto,recovery\n");
+  std::FILE* f = pb::open_csv_for_append(
+      csv_path,
+      "dataset,study,kind,particles,beams,gating,selective,kld,subsample,seed,threads,"
+      "scans,updates,ms_per_scan,update_ms_mean,update_ms_p95,particles_mean,"
+      "beams_used_mean,ate_rmse_m,ate_max_m,heading_rmse_deg,pareto,recovery",
+      "pgmcl_sweep");
+  if (!f) return 1;
   for (const auto& [c, r] : rows)
     std::fprintf(f,
                  "%s,%s,%s,%zu,%zu,%s,%s,%s,%s,%llu,%d,%zu,%zu,%.4f,%.4f,%.4f,%.1f,%.1f,%.5f,%.4f,%"

@@ -66,16 +66,30 @@ struct KindCase {
   double oracle_tolerance;  // nats per beam, table vs exact model (see SumMatchesOracles)
 };
 
-class MeasurementKinds : public ::testing::TestWithParam<KindCase> {};
+class MeasurementKinds : public ::testing::TestWithParam<KindCase> {
+ protected:
+  /// The table of `kind` on the world's grid.
+  static std::shared_ptr<const maps::LikelihoodField> table(
+      const test::World& world, const maps::BeamLikelihoodParams& params, maps::TableKind kind) {
+    maps::LikelihoodFieldOptions opt;
+    opt.kind = kind;
+    return std::make_shared<const maps::LikelihoodField>(world.grid, params, opt);
+  }
+  /// The paper's sigmas with a 3 % model mismatch, except for the oriented kind: mismatch
+  /// would make its kernel isotropic (and the table fall back).
+  static maps::BeamLikelihoodParams mismatched_params(maps::TableKind kind) {
+    maps::BeamLikelihoodParams params;
+    params.model_mismatch = kind == maps::TableKind::kOrientedBins ? 0.0 : 0.03;
+    return params;
+  }
+};
 
 // Weights for the known pose beat a pose 5 cm off (along x and y) and 2 deg off.
 TEST_P(MeasurementKinds, KnownPoseBeatsOffsets) {
   const KindCase kc = GetParam();
   const test::World world = test::make_room(kc.resolution);
-  maps::BeamLikelihoodParams params;  // the paper's sigmas, no mismatch
-  maps::LikelihoodFieldOptions opt;
-  opt.kind = kc.kind;
-  auto field = std::make_shared<const maps::LikelihoodField>(world.grid, params, opt);
+  const maps::BeamLikelihoodParams params;  // the paper's sigmas, no mismatch
+  auto field = table(world, params, kc.kind);
   ASSERT_EQ(field->kind(), kc.kind);
   MeasurementModel model(field);
 
@@ -148,12 +162,8 @@ std::uint32_t brute_force_sum_q(const maps::LikelihoodField& f, const LaserScan&
 TEST_P(MeasurementKinds, SumMatchesOracles) {
   const KindCase kc = GetParam();
   const test::World world = test::make_room(kc.resolution);
-  maps::BeamLikelihoodParams params;
-  // Mismatch would make the oriented kernel isotropic (and the table fall back).
-  params.model_mismatch = kc.kind == maps::TableKind::kOrientedBins ? 0.0 : 0.03;
-  maps::LikelihoodFieldOptions opt;
-  opt.kind = kc.kind;
-  auto field = std::make_shared<const maps::LikelihoodField>(world.grid, params, opt);
+  const maps::BeamLikelihoodParams params = mismatched_params(kc.kind);
+  auto field = table(world, params, kc.kind);
   ASSERT_EQ(field->kind(), kc.kind);
   MeasurementModel model(field);
   test::ScanSpec spec;
@@ -190,11 +200,8 @@ TEST_P(MeasurementKinds, SumMatchesOracles) {
 TEST_P(MeasurementKinds, KernelsMatchViewLookupsExactly) {
   const KindCase kc = GetParam();
   const test::World world = test::make_room(kc.resolution);
-  maps::BeamLikelihoodParams params;
-  params.model_mismatch = kc.kind == maps::TableKind::kOrientedBins ? 0.0 : 0.03;
-  maps::LikelihoodFieldOptions opt;
-  opt.kind = kc.kind;
-  auto field = std::make_shared<const maps::LikelihoodField>(world.grid, params, opt);
+  const maps::BeamLikelihoodParams params = mismatched_params(kc.kind);
+  auto field = table(world, params, kc.kind);
   ASSERT_EQ(field->kind(), kc.kind);
   MeasurementModel model(field);
   test::ScanSpec spec;

@@ -42,24 +42,19 @@ TEST(KernelTable, CellIntegratedMatchesSeparableErfAtZeroAndNinetyDegrees) {
       spec.beam_angle = angle;
       const KernelTable t = make_kernel_table(spec);
       const bool along_x = angle == 0.0;
+      // Mass of cell (dx, dy) under the separable normal, sigma_along on the beam's axis.
+      const auto cell_mass = [&](int dx, int dy) {
+        return erf_mass((dx - 0.5) * k.cell, (dx + 0.5) * k.cell, along_x ? k.sa : k.sc) *
+               erf_mass((dy - 0.5) * k.cell, (dy + 0.5) * k.cell, along_x ? k.sc : k.sa);
+      };
       double captured = 0.0;
       for (int dy = -k.r; dy <= k.r; ++dy)
-        for (int dx = -k.r; dx <= k.r; ++dx) {
-          const double mx =
-              erf_mass((dx - 0.5) * k.cell, (dx + 0.5) * k.cell, along_x ? k.sa : k.sc);
-          const double my =
-              erf_mass((dy - 0.5) * k.cell, (dy + 0.5) * k.cell, along_x ? k.sc : k.sa);
-          captured += mx * my;
-        }
+        for (int dx = -k.r; dx <= k.r; ++dx) captured += cell_mass(dx, dy);
       EXPECT_NEAR(t.captured_mass, captured, 1e-13);
       for (int dy = -k.r; dy <= k.r; ++dy)
-        for (int dx = -k.r; dx <= k.r; ++dx) {
-          const double mx =
-              erf_mass((dx - 0.5) * k.cell, (dx + 0.5) * k.cell, along_x ? k.sa : k.sc);
-          const double my =
-              erf_mass((dy - 0.5) * k.cell, (dy + 0.5) * k.cell, along_x ? k.sc : k.sa);
-          EXPECT_NEAR(t.at(dx, dy), mx * my / captured, 1e-13) << dx << "," << dy << " " << angle;
-        }
+        for (int dx = -k.r; dx <= k.r; ++dx)
+          EXPECT_NEAR(t.at(dx, dy), cell_mass(dx, dy) / captured, 1e-13)
+              << dx << "," << dy << " " << angle;
       EXPECT_NEAR(table_sum(t), 1.0, 1e-14);
     }
   }

@@ -163,17 +163,23 @@ TEST(Odometry, NoiseFreeOdometryEqualsTruthAndKidnapIsInvisible) {
   EXPECT_TRUE(jumped);
 }
 
-TEST(Odometry, SystematicErrorsScaleDistanceAndBendHeading) {
-  const auto grid = test::square_room(200, 40, 0.05);
+// A 5 m turn-then-drive run east from (1, 1), odometry in the world frame.
+Scenario eastward_drive(double duration, double scan_rate) {
   Scenario sc;
   sc.start = {1.0, 1.0, 0.0};
   sc.waypoints.waypoints = {{6.0, 1.0}};
   sc.waypoints.controller = Controller::kTurnThenDrive;
-  sc.duration = 15.0;
-  sc.scan_rate = 10.0;
+  sc.duration = duration;
+  sc.scan_rate = scan_rate;
+  sc.odometry.origin = Pose2{};
+  return sc;
+}
+
+TEST(Odometry, SystematicErrorsScaleDistanceAndBendHeading) {
+  const auto grid = test::square_room(200, 40, 0.05);
+  Scenario sc = eastward_drive(15.0, 10.0);
   sc.odometry.random_noise = false;
   sc.odometry.wheel_radius_bias = 0.02;
-  sc.odometry.origin = Pose2{};
   auto m = simulate_motion(sc, grid);
   auto odom = simulate_odometry(sc, m);
   const double driven = m.back().truth.x - 1.0;  // stops within goal_tolerance of 6.0
@@ -195,14 +201,8 @@ TEST(Odometry, RandomNoiseFollowsTheAlphas) {
   // Straight 5 m drive in 50 intervals: var(trans) = a3 trans^2 per interval, so the
   // odometry distance error has sd sqrt(50 a3) * 0.1 m. Checked over 400 seeds.
   const auto grid = test::square_room(200, 40, 0.05);
-  Scenario sc;
-  sc.start = {1.0, 1.0, 0.0};
-  sc.waypoints.waypoints = {{6.0, 1.0}};
-  sc.waypoints.controller = Controller::kTurnThenDrive;
-  sc.duration = 12.0;
-  sc.scan_rate = 5.0;  // 0.1 m per interval at 0.5 m/s
+  Scenario sc = eastward_drive(12.0, 5.0);  // 0.1 m per interval at 0.5 m/s
   sc.odometry.alphas = {0.0, 0.0, 0.01, 0.0, 0.0};
-  sc.odometry.origin = Pose2{};
   const auto m = simulate_motion(sc, grid);
   double s = 0.0, ss = 0.0;
   const int n = 400;

@@ -200,11 +200,7 @@ TEST(StressLikelihood, TableMemoryIsTheStatedBytesPerCell) {
 // that, construction is a std::length_error naming the byte count, before any table memory
 // is allocated; the default budget (8 GiB) already refuses the oriented table.
 TEST(StressLikelihood, HugeMapIsACleanLengthErrorNotAnAllocation) {
-#ifdef NDEBUG
-  constexpr int kSide = 40000;
-#else
-  constexpr int kSide = 10000;
-#endif
+  constexpr int kSide = kHugeMapSide;
   const maps::OccupancyGrid grid(kSide, kSide, 0.005, {}, maps::kUnknown);
   const std::size_t cells = grid.size();
   struct Case {

@@ -223,11 +223,7 @@ TEST(StressExtremes, AllFreeAndAllOccupiedMaps) {
 // A 40000 x 40000 map (10000 x 10000 in Debug) whose table exceeds max_table_bytes: the
 // Localizer reports the field's std::length_error (with the byte count).
 TEST(StressExtremes, HugeMapIsACleanLengthError) {
-#ifdef NDEBUG
-  constexpr int kSide = 40000;
-#else
-  constexpr int kSide = 10000;
-#endif
+  constexpr int kSide = kHugeMapSide;
   const maps::OccupancyGrid grid(kSide, kSide, 0.05, {}, maps::kUnknown);
   LocalizerConfig cfg;
   cfg.likelihood.table.max_table_bytes = grid.size() / 2;

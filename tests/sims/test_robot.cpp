@@ -1,7 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "pgmcl/sims/scenario.hpp"
 #include "scenes.hpp"
@@ -15,6 +17,13 @@ double seg_dist(const Point2& p, const Point2& a, const Point2& b) {
   const double ex = b.x - a.x, ey = b.y - a.y, l2 = ex * ex + ey * ey;
   const double u = std::clamp(((p.x - a.x) * ex + (p.y - a.y) * ey) / l2, 0.0, 1.0);
   return std::hypot(p.x - a.x - u * ex, p.y - a.y - u * ey);
+}
+
+// Distance from p to the polyline through pts.
+double polyline_dist(const Point2& p, const std::vector<Point2>& pts) {
+  double d = 1e9;
+  for (std::size_t k = 0; k + 1 < pts.size(); ++k) d = std::min(d, seg_dist(p, pts[k], pts[k + 1]));
+  return d;
 }
 
 TEST(DiffDrive, ArcsAreExactAndComposeOverSubsteps) {
@@ -55,10 +64,7 @@ TEST(WaypointFollowing, PurePursuitTracksThePathAndStopsAtTheGoal) {
   double worst = 0.0;
   for (std::size_t i = 1; i < m.size(); ++i) {
     const Point2 p{m[i].truth.x, m[i].truth.y};
-    double d = 1e9;
-    for (std::size_t k = 0; k + 1 < pts.size(); ++k)
-      d = std::min(d, seg_dist(p, pts[k], pts[k + 1]));
-    worst = std::max(worst, d);
+    worst = std::max(worst, polyline_dist(p, pts));
     // Speed limit: 0.5 m/s over 0.1 s between scans.
     EXPECT_LE(std::hypot(m[i].truth.x - m[i - 1].truth.x, m[i].truth.y - m[i - 1].truth.y),
               0.05 + 1e-9);
@@ -79,10 +85,7 @@ TEST(WaypointFollowing, LoopingPurePursuitKeepsCirculating) {
   double worst = 0.0, late = 0.0;
   for (std::size_t i = 1; i < m.size(); ++i) {
     const Point2 p{m[i].truth.x, m[i].truth.y};
-    double d = 1e9;
-    for (std::size_t k = 0; k + 1 < pts.size(); ++k)
-      d = std::min(d, seg_dist(p, pts[k], pts[k + 1]));
-    worst = std::max(worst, d);
+    worst = std::max(worst, polyline_dist(p, pts));
     if (m[i].stamp > 50.0) late += std::hypot(p.x - m[i - 1].truth.x, p.y - m[i - 1].truth.y);
   }
   EXPECT_LT(worst, 0.5 * sc.waypoints.lookahead);

@@ -135,6 +135,7 @@ void Localizer::set_pose(const Pose2& mean, const Eigen::Matrix3d& cov) {
 
 void Localizer::reset_after_init() {
   p_.set_uniform_weights();
+  probation_.assign(p_.size(), 0);
   force_ = true;
   have_averages_ = false;
   UpdateResult r;

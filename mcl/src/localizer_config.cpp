@@ -76,6 +76,11 @@ void LocalizerConfig::validate() const {
       fail("filter.recovery.alpha_slow", "must be in (0, 1)");
     if (!(f.recovery.alpha_fast > f.recovery.alpha_slow && f.recovery.alpha_fast <= 1.0))
       fail("filter.recovery.alpha_fast", "must be in (alpha_slow, 1]");
+    if (!(f.recovery.threshold > 0.0 && f.recovery.threshold <= 1.0))
+      fail("filter.recovery.threshold", "must be in (0, 1]");
+    if (f.recovery.probation > 255) fail("filter.recovery.probation", "must be <= 255");
+    if (!(f.recovery.probation_weight > 0.0 && f.recovery.probation_weight < 1.0))
+      fail("filter.recovery.probation_weight", "must be in (0, 1)");
   }
 
   require_finite_nonneg(gating.d_min, "gating.d_min");

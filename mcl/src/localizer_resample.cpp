@@ -58,7 +58,7 @@ void Localizer::resample(UpdateResult& r) {
   // Probabilistic Robotics, Table 8.3, line 13: inject with probability
   // max(0, 1 - w_fast / w_slow).
   const double p_inject = (rc.enabled && have_averages_ && w_slow_ > 0.0)
-                              ? std::max(0.0, 1.0 - w_fast_ / w_slow_)
+                              ? std::max(0.0, 1.0 - w_fast_ / (rc.threshold * w_slow_))
                               : 0.0;
   const bool degenerate = r.n_eff < cfg_.filter.resample_threshold * static_cast<double>(n);
   // Resample when the weights degenerated, or when at least one injection is expected
@@ -104,6 +104,11 @@ void Localizer::resample(UpdateResult& r) {
   std::swap(p_.theta, tmp_theta_);
   p_.resize(n_out);
   if (injected > 0) w_fast_ = w_slow_;  // bursts, see RecoveryConfig
+  tmp_probation_.resize(n_out);
+  gather<std::uint8_t>(probation_, idx, std::span<std::uint8_t>(tmp_probation_).first(n_keep));
+  std::fill(tmp_probation_.begin() + static_cast<std::ptrdiff_t>(n_keep), tmp_probation_.end(),
+            static_cast<std::uint8_t>(rc.probation));
+  std::swap(probation_, tmp_probation_);
   p_.set_uniform_weights();
   r.resampled = true;
   r.injected = injected;

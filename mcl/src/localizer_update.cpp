@@ -183,6 +183,7 @@ bool Localizer::measurement_update(const LaserScan& scan, UpdateResult& r) {
   r.tempering = tau;
   for (std::size_t i = 0; i < n; ++i) p_.log_w[i] += tau * ll_[i];
   (void)normalise_log_weights(p_.log_w, p_.w);
+  limit_probation_weight();
   r.n_eff = effective_sample_size(p_.w);
   return true;
 }
@@ -205,6 +206,37 @@ void Localizer::update_recovery_averages(double w_avg, UpdateResult& r) noexcept
   }
   r.w_slow = w_slow_;
   r.w_fast = w_fast_;
+}
+
+void Localizer::limit_probation_weight() {
+  // Together, the particles on probation hold at most RecoveryConfig::probation_weight
+  // (see there for why). Sums in log space: a random pose that fits 100 nats better than
+  // the cluster has a weight share of 1 - 1e-44, which is 1.0 in double.
+  const double share = cfg_.filter.recovery.probation_weight;
+  constexpr double kNone = -std::numeric_limits<double>::infinity();
+  double max_p = kNone, max_t = kNone;
+  for (std::size_t i = 0; i < p_.size(); ++i) {
+    double& m = probation_[i] != 0 ? max_p : max_t;
+    m = std::max(m, p_.log_w[i]);
+  }
+  if (max_p > kNone && max_t > kNone) {  // both groups hold weight
+    double sum_p = 0.0, sum_t = 0.0;
+    for (std::size_t i = 0; i < p_.size(); ++i) {
+      if (probation_[i] != 0)
+        sum_p += std::exp(p_.log_w[i] - max_p);
+      else
+        sum_t += std::exp(p_.log_w[i] - max_t);
+    }
+    const double log_ratio = (max_p + std::log(sum_p)) - (max_t + std::log(sum_t));
+    const double log_target = std::log(share / (1.0 - share));
+    if (log_ratio > log_target) {
+      for (std::size_t i = 0; i < p_.size(); ++i)
+        if (probation_[i] != 0) p_.log_w[i] += log_target - log_ratio;
+      (void)normalise_log_weights(p_.log_w, p_.w);
+    }
+  }
+  for (std::uint8_t& k : probation_)
+    if (k != 0) --k;
 }
 
 void Localizer::count_background(UpdateResult& r) const noexcept {

@@ -93,6 +93,7 @@ class Localizer {
   /// Returns false (and leaves weights alone) when no beam is valid.
   bool measurement_update(const LaserScan& scan, UpdateResult& r);
   void update_recovery_averages(double w_avg, UpdateResult& r) noexcept;
+  void limit_probation_weight();
   void resample(UpdateResult& r);
   [[nodiscard]] std::size_t kld_sample_count(Rng& rng, double p_inject, Rng& inject_rng);
   void compute_estimate(UpdateResult& r);
@@ -117,7 +118,10 @@ class Localizer {
   std::vector<std::uint32_t> selected_;
   std::vector<float> tmp_x_, tmp_y_, tmp_theta_;
   std::vector<float> inj_x_, inj_y_, inj_theta_;  // poses injected by this resampling
-  std::vector<double> cum_;                       // cumulative weights for KLD's draws
+  // Per particle: measurement updates its injected lineage stays on probation
+  // (RecoveryConfig::probation); 0 for particles that descend from the tracked set.
+  std::vector<std::uint8_t> probation_, tmp_probation_;
+  std::vector<double> cum_;  // cumulative weights for KLD's draws
   KldBinner binner_;
   double kld_z_ = 0.0;  // normal_quantile(1 - kld.delta)
   ParticleClusterer clusterer_;

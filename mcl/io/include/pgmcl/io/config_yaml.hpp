@@ -18,7 +18,8 @@
 ///   filter:      { particles, global_particles, resample_threshold,
 ///                  kld: { enabled, min_particles, max_particles, epsilon, delta, bin_xy,
 ///                         bin_theta },
-///                  recovery: { enabled, alpha_slow, alpha_fast } }
+///                  recovery: { enabled, alpha_slow, alpha_fast, threshold,
+///                             probation, probation_weight } }
 ///   gating:      { enabled, d_min, theta_min }
 ///   estimate:    { cluster_xy, cluster_theta, converged_weight, converged_xy_std,
 ///                  converged_theta_std }

@@ -286,6 +286,15 @@ TEST(LocalizerConfig, ValidateNamesTheField) {
   c.filter.recovery.alpha_fast = 0.0005;
   expect_invalid(c, "filter.recovery.alpha_fast");
   c = {};
+  c.filter.recovery.threshold = 0.0;
+  expect_invalid(c, "filter.recovery.threshold");
+  c = {};
+  c.filter.recovery.probation = 256;  // stored per particle in 8 bits
+  expect_invalid(c, "filter.recovery.probation");
+  c = {};
+  c.filter.recovery.probation_weight = 1.0;
+  expect_invalid(c, "filter.recovery.probation_weight");
+  c = {};
   c.filter.resample_threshold = 1.5;
   expect_invalid(c, "filter.resample_threshold");
   c = {};

@@ -107,7 +107,7 @@ struct KldConfig {
 ///    tell the two apart (a fixed log-weight handicap for injected poses: intel still
 ///    diverged at 40 nats, fr079 needed 150, the depot kidnapping no longer recovered at
 ///    80); the wrong pose's fit falls behind within a few updates as the view changes.
-///    probation 3 / 6 / 10 / 15: intel 0.033 m from 3 on; fr079 8.3 / 6.9 / 0.043 /
+///    probation 3 / 6 / 10 / 15 (weight 0.1): intel 0.033 m from 3 on; fr079 8.3 / 6.9 / 0.043 /
 ///    0.043 m; fr079 biased odometry 5.7 m at 10, 0.044 m at 15. Cost: the depot
 ///    kidnapping (closed-loop test) re-localised at 20.5 s (10) / 21.1 s (15) instead of
 ///    18.6 s. Rejected: injecting only below threshold * w_slow (threshold 0.5 and 0.3

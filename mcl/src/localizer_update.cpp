@@ -210,24 +210,17 @@ void Localizer::update_recovery_averages(double w_avg, UpdateResult& r) noexcept
 
 void Localizer::limit_probation_weight() {
   // Together, the particles on probation hold at most RecoveryConfig::probation_weight
-  // (see there for why). Sums in log space: a random pose that fits 100 nats better than
-  // the cluster has a weight share of 1 - 1e-44, which is 1.0 in double.
-  const double share = cfg_.filter.recovery.probation_weight;
-  constexpr double kNone = -std::numeric_limits<double>::infinity();
-  double max_p = kNone, max_t = kNone;
-  for (std::size_t i = 0; i < p_.size(); ++i) {
-    double& m = probation_[i] != 0 ? max_p : max_t;
-    m = std::max(m, p_.log_w[i]);
-  }
-  if (max_p > kNone && max_t > kNone) {  // both groups hold weight
-    double sum_p = 0.0, sum_t = 0.0;
-    for (std::size_t i = 0; i < p_.size(); ++i) {
-      if (probation_[i] != 0)
-        sum_p += std::exp(p_.log_w[i] - max_p);
-      else
-        sum_t += std::exp(p_.log_w[i] - max_t);
-    }
-    const double log_ratio = (max_p + std::log(sum_p)) - (max_t + std::log(sum_t));
+  // (see there for why). Compared in log space: a random pose that fits 100 nats better
+  // than the cluster has a weight share of 1 - 1e-44, which is 1.0 in double.
+  lw_probation_.clear();
+  lw_tracked_.clear();
+  for (std::size_t i = 0; i < p_.size(); ++i)
+    (probation_[i] != 0 ? lw_probation_ : lw_tracked_).push_back(p_.log_w[i]);
+  const double lse_probation = log_sum_exp(lw_probation_);
+  const double lse_tracked = log_sum_exp(lw_tracked_);
+  if (std::isfinite(lse_probation) && std::isfinite(lse_tracked)) {  // both groups hold weight
+    const double share = cfg_.filter.recovery.probation_weight;
+    const double log_ratio = lse_probation - lse_tracked;
     const double log_target = std::log(share / (1.0 - share));
     if (log_ratio > log_target) {
       for (std::size_t i = 0; i < p_.size(); ++i)

@@ -121,7 +121,8 @@ class Localizer {
   // Per particle: measurement updates its injected lineage stays on probation
   // (RecoveryConfig::probation); 0 for particles that descend from the tracked set.
   std::vector<std::uint8_t> probation_, tmp_probation_;
-  std::vector<double> cum_;  // cumulative weights for KLD's draws
+  std::vector<double> lw_probation_, lw_tracked_;  // limit_probation_weight() scratch
+  std::vector<double> cum_;                        // cumulative weights for KLD's draws
   KldBinner binner_;
   double kld_z_ = 0.0;  // normal_quantile(1 - kld.delta)
   ParticleClusterer clusterer_;

@@ -49,7 +49,7 @@ TEST(CliReport, MetricsYamlHasTheDocumentedKeys) {
   EXPECT_FALSE(plain["relations_trans_m"]);
 
   m.accuracy = AccuracyMetrics{0.042, 0.31, 1.7, std::nullopt, 19};
-  m.relations = RelationsMetrics{0.021, 0.8, 140};
+  m.relations = RelationsMetrics{0.021, 0.8, 140, 0.013, 0.45};
   YAML::Node full = YAML::Load(metrics_yaml(m));
   EXPECT_DOUBLE_EQ(full["ate_rmse_m"].as<double>(), 0.042);
   EXPECT_DOUBLE_EQ(full["ate_max_m"].as<double>(), 0.31);
@@ -57,6 +57,9 @@ TEST(CliReport, MetricsYamlHasTheDocumentedKeys) {
   EXPECT_TRUE(full["converged_after_s"].IsNull());
   EXPECT_DOUBLE_EQ(full["relations_trans_m"].as<double>(), 0.021);
   EXPECT_DOUBLE_EQ(full["relations_rot_deg"].as<double>(), 0.8);
+  EXPECT_DOUBLE_EQ(full["relations_trans_std_m"].as<double>(), 0.013);
+  EXPECT_DOUBLE_EQ(full["relations_rot_std_deg"].as<double>(), 0.45);
+  EXPECT_EQ(full["relations_used"].as<int>(), 140);
   EXPECT_DOUBLE_EQ(full["wall_s"].as<double>(), 12.5);
   m.accuracy->converged_after_s = 3.25;
   EXPECT_DOUBLE_EQ(YAML::Load(metrics_yaml(m))["converged_after_s"].as<double>(), 3.25);

@@ -45,6 +45,8 @@ std::vector<std::pair<std::string, std::string>> rows(const RunMetrics& m, bool 
   if (m.relations) {
     r.emplace_back("relations_trans_m", num(m.relations->trans_m));
     r.emplace_back("relations_rot_deg", num(m.relations->rot_deg));
+    r.emplace_back("relations_trans_std_m", num(m.relations->trans_std_m));
+    r.emplace_back("relations_rot_std_deg", num(m.relations->rot_std_deg));
     r.emplace_back("relations_used", std::to_string(m.relations->used));
   }
   return r;
@@ -63,7 +65,8 @@ AccuracyMetrics accuracy_metrics(const AteResult& ate) {
 }
 
 RelationsMetrics relations_metrics(const RelationResult& rel) {
-  return {rel.translation.mean, rel.rotation.mean, rel.matched};
+  return {rel.translation.mean, rel.rotation.mean, rel.matched, rel.translation.stddev,
+          rel.rotation.stddev};
 }
 
 void MetricsAccumulator::add_update(double update_ms, std::size_t particles,

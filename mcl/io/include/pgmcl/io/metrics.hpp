@@ -27,6 +27,9 @@ struct RelationsMetrics {
   double trans_m = 0.0;  ///< mean translational error of the relations, metres
   double rot_deg = 0.0;  ///< mean rotational error, degrees
   std::size_t used = 0;  ///< relations whose two stamps matched estimate poses
+  /// Sample standard deviations: the paper's tables give "mean ± std" of both errors.
+  double trans_std_m = 0.0;
+  double rot_std_deg = 0.0;
 };
 
 struct RunMetrics {
@@ -68,7 +71,8 @@ class MetricsAccumulator {
 
 /// The YAML text of metrics.yaml (keys as in RunMetrics; accuracy and relations keys:
 /// ate_rmse_m, ate_max_m, heading_rmse_deg, converged_after_s (null if never), truth_matched,
-/// relations_trans_m, relations_rot_deg, relations_used). `run_figures` false leaves out the
+/// relations_trans_m, relations_rot_deg, relations_trans_std_m, relations_rot_std_deg,
+/// relations_used). `run_figures` false leaves out the
 /// filter's own figures (updates .. beams_used_mean), for evaluating a trajectory file.
 [[nodiscard]] std::string metrics_yaml(const RunMetrics& m, bool run_figures = true);
 /// Writes metrics_yaml(m, run_figures) to `path`; throws IoError on failure.

@@ -114,6 +114,10 @@ struct KldConfig {
 ///    still diverged on fr079 and the depot kidnapping never recovered, because the
 ///    bursts shrink to a few particles); a faster alpha_slow (0.01, 0.03: still
 ///    diverged). `threshold` is kept as an option; 1 is Table 8.3.
+///    probation 15 was the default until fixed particle counts (KLD off) were swept: fr079
+///    with 1000 particles and 90 beams still diverged (11.0 m ATE; 1.25 m on its first 1200
+///    scans); 30 tracks there (0.043 m) and on intel / aces / csail-raw with KLD on and off
+///    (0.030-0.101 m, none worse than at 15).
 ///    probation_weight 0.1 / 0.05 / 0.02 in the clutter test (tests/mcl): max error 0.78-1.0
 ///    / 0.38-0.85 / 0.15-0.51 m (seeds 1-4; recovery off 0.09-0.12 m), because with more
 ///    than 1 - EstimateConfig::converged_weight on probation the filter counts as not
@@ -125,7 +129,7 @@ struct RecoveryConfig {
   double alpha_fast = 0.1;    ///< short-term average rate (per measurement update)
   /// Inject with probability max(0, 1 - w_fast / (threshold * w_slow)); in (0, 1].
   double threshold = 1.0;
-  std::size_t probation = 15;      ///< measurement updates an injected lineage waits, <= 255
+  std::size_t probation = 30;      ///< measurement updates an injected lineage waits, <= 255
   double probation_weight = 0.02;  ///< largest total weight of the lineages on probation
 };
 

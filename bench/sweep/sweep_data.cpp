@@ -6,6 +6,7 @@
 
 #include "../bench_common.hpp"
 #include "pgmcl/io/carmen.hpp"
+#include "pgmcl/io/scenario_yaml.hpp"
 #include "pgmcl/maps/map_io.hpp"
 #include "pgmcl/mcl/random.hpp"
 #include "pgmcl/sims/scenario.hpp"
@@ -18,6 +19,17 @@ std::vector<const io::CarmenScan*> front_scans(const io::CarmenLog& log) {
   for (const auto& s : log.scans)
     if (s.message == io::LaserMessage::kFlaser && s.has_poses) out.push_back(&s);
   return out;
+}
+
+void append_simulation(Dataset& d, const sims::SimulationLog& log) {
+  for (const auto& r : log.records) {
+    d.scans.push_back(r.scan);
+    d.odometry.push_back(r.odometry);
+    d.truth.push_back(r.truth);
+    d.stamps.push_back(r.stamp);
+  }
+  if (d.scans.empty()) throw std::runtime_error(d.name + ": the simulation produced no scans");
+  d.log_beams = d.scans.front().ranges.size();
 }
 
 }  // namespace
@@ -106,15 +118,16 @@ Dataset simulate_dataset(const std::string& name, const SimSource& src) {
     p.path.start_offset = rng.uniform(0.0, 8.0);
     sc.discs.push_back(p);
   }
-  const sims::SimulationLog log = sims::simulate(sc, d.grid);
-  for (const auto& r : log.records) {
-    d.scans.push_back(r.scan);
-    d.odometry.push_back(r.odometry);
-    d.truth.push_back(r.truth);
-    d.stamps.push_back(r.stamp);
-  }
-  if (d.scans.empty()) throw std::runtime_error(name + ": the simulation produced no scans");
-  d.log_beams = d.scans.front().ranges.size();
+  append_simulation(d, sims::simulate(sc, d.grid));
+  return d;
+}
+
+Dataset scenario_dataset(const std::string& name, const std::string& yaml_path, double duration_s) {
+  Dataset d;
+  d.name = name;
+  io::ScenarioFile file = io::read_scenario_file(yaml_path, d.grid);
+  if (duration_s > 0) file.scenario.duration = duration_s;
+  append_simulation(d, sims::simulate(file.scenario, d.grid));
   return d;
 }
 

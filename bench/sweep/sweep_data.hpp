@@ -2,7 +2,8 @@
 /// Datasets of the macro sweep: a map, scans with the odometry pose at each scan, and the
 /// ground-truth pose at each scan (same index). Either a CARMEN log (real scans; odometry
 /// from the log or synthesised from the truth with Table 5.6 noise, as `pgmcl perturb`
-/// does) or a simulated run on a synthetic office (sims::simulate).
+/// does), a scenario file of configs/scenarios/ or a simulated run on a synthetic office
+/// (both through sims::simulate).
 
 #include <cstddef>
 #include <cstdint>
@@ -54,5 +55,12 @@ struct SimSource {
 
 /// A UTM-30LX random walk through a synthetic office with people and biased odometry.
 [[nodiscard]] Dataset simulate_dataset(const std::string& name, const SimSource& src);
+
+/// The run a scenario YAML describes (its map, sensor, robot, people, odometry model;
+/// what `pgmcl simulate` writes). duration_s > 0 replaces the file's duration: a robot whose
+/// waypoints do not loop then stands at its goal for the rest of the run. Throws
+/// io::ScenarioError / io::IoError for a bad file.
+[[nodiscard]] Dataset scenario_dataset(const std::string& name, const std::string& yaml_path,
+                                       double duration_s = 0.0);
 
 }  // namespace pgmcl::bench

@@ -11,11 +11,17 @@ jobs=${PGMCL_JOBS:-2}
 fuzz_seconds=${PGMCL_FUZZ_SECONDS:-60}
 root=$PWD
 t0=$SECONDS
+stage_start=$SECONDS
+stage_done() {  # prints how long the stage that just ended took (CI budget: 20 min in all)
+  echo "== $1 done in $((SECONDS - stage_start)) s"
+  stage_start=$SECONDS
+}
 
 echo "== [1/4] Release build + tests"
 cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release -DPGMCL_WERROR=ON >/dev/null
 cmake --build build/release -j"$jobs"
 ctest --test-dir build/release --output-on-failure -j"$jobs"
+stage_done "[1/4]"
 
 echo "== [2/4] Debug + ASan/UBSan build + tests (serial, no OpenMP)"
 cmake -S . -B build/asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" \
@@ -23,6 +29,7 @@ cmake -S . -B build/asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O
 cmake --build build/asan -j"$jobs"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build/asan --output-on-failure -j"$jobs"
+stage_done "[2/4]"
 
 echo "== [3/4] Install + find_package(pgmcl) consumer"
 rm -rf build/install build/consumer
@@ -31,6 +38,7 @@ cmake -S mcl/examples/consumer -B build/consumer -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_PREFIX_PATH="$root/build/install" >/dev/null
 cmake --build build/consumer -j"$jobs"
 build/consumer/pgmcl_consumer "$root/data"
+stage_done "[3/4]"
 
 echo "== [4/4] Fuzzing (${fuzz_seconds}s per target)"
 if [ -d tests/fuzz ] && command -v clang++ >/dev/null; then
@@ -41,4 +49,5 @@ if [ -d tests/fuzz ] && command -v clang++ >/dev/null; then
 else
   echo "no fuzz targets yet"
 fi
+stage_done "[4/4]"
 echo "== all test stages passed in $((SECONDS - t0)) s"

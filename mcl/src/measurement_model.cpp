@@ -21,6 +21,20 @@ inline Rot rotation_of(float theta) noexcept {
   return {static_cast<float>(std::cos(t)), static_cast<float>(std::sin(t))};
 }
 
+// An endpoint is particle (px, py) + the rotated beam, so |endpoint| <= |p| + reach per
+// axis. Below this bound maps::floor_to_cell's clamps cannot act and the kernels use
+// floor_to_cell_unclamped: same cells, but the transform loops vectorise (the clamps
+// compile to branches there). Only particles thrown far off (or NaN) take the clamped path.
+constexpr float kUnclampedLimit = 5.0e8f;
+inline bool needs_clamp(float px, float py, float reach) noexcept {
+  return !(std::abs(px) + reach < kUnclampedLimit && std::abs(py) + reach < kUnclampedLimit);
+}
+template <bool kClamp>
+inline int to_cell(float c) noexcept {
+  if constexpr (kClamp) return maps::floor_to_cell(c);
+  return maps::floor_to_cell_unclamped(c);
+}
+
 // The three kernels share one shape: transform the base-frame endpoint of beam j by the
 // particle pose (in cells), read q, add. Only the lookup differs.
 // Beams per chunk of the two-pass loops below (stack buffers of 2 x 512 bytes).
@@ -36,11 +50,11 @@ struct IsotropicKernel {
   const float* ey;
   std::size_t m;
   float inv_res;
+  float reach;
 
-  template <bool kCountBackground>
-  std::uint32_t score(float x, float y, float theta, std::uint32_t* background) const noexcept {
+  template <bool kCountBackground, bool kClamp>
+  std::uint32_t score(float px, float py, float theta, std::uint32_t* background) const noexcept {
     const maps::IsotropicView v = view;
-    const float px = x * inv_res, py = y * inv_res;
     const Rot r = rotation_of(theta);
     alignas(16) std::int32_t cols[kChunk];
     alignas(16) std::int32_t rows[kChunk];
@@ -50,8 +64,8 @@ struct IsotropicKernel {
       const float* const bx = ex + j0;
       const float* const by = ey + j0;
       for (std::size_t k = 0; k < len; ++k) {
-        const int c = maps::floor_to_cell(px + (r.c * bx[k] - r.s * by[k]));
-        const int rr = maps::floor_to_cell(py + (r.s * bx[k] + r.c * by[k]));
+        const int c = to_cell<kClamp>(px + (r.c * bx[k] - r.s * by[k]));
+        const int rr = to_cell<kClamp>(py + (r.s * bx[k] + r.c * by[k]));
         const bool inside = (c >= 0) & (c < v.width) & (rr >= 0) & (rr < v.height);
         cols[k] = c;
         rows[k] = inside ? rr : -1;
@@ -79,11 +93,11 @@ struct OrientedKernel {
   const float* bin;  // beam direction in the base frame, in bins, [0, bins)
   std::size_t m;
   float inv_res;
+  float reach;
 
-  template <bool kCountBackground>
-  std::uint32_t score(float x, float y, float theta, std::uint32_t* background) const noexcept {
+  template <bool kCountBackground, bool kClamp>
+  std::uint32_t score(float px, float py, float theta, std::uint32_t* background) const noexcept {
     const maps::OrientedView v = view;
-    const float px = x * inv_res, py = y * inv_res;
     const Rot r = rotation_of(theta);
     const int bins = v.bins;
     const auto period = static_cast<float>(bins);
@@ -101,8 +115,8 @@ struct OrientedKernel {
       const float* const by = ey + j0;
       const float* const bb = bin + j0;
       for (std::size_t k = 0; k < len; ++k) {
-        const int c = maps::floor_to_cell(px + (r.c * bx[k] - r.s * by[k]));
-        const int rr = maps::floor_to_cell(py + (r.s * bx[k] + r.c * by[k]));
+        const int c = to_cell<kClamp>(px + (r.c * bx[k] - r.s * by[k]));
+        const int rr = to_cell<kClamp>(py + (r.s * bx[k] + r.c * by[k]));
         int b = static_cast<int>(tb + bb[k]);
         b = b >= bins ? b - bins : b;
         b = b >= bins ? b - bins : b;
@@ -139,11 +153,11 @@ struct OffsetKernel {
   const float* uy;
   std::size_t m;
   float inv_res;
+  float reach;
 
-  template <bool kCountBackground>
-  std::uint32_t score(float x, float y, float theta, std::uint32_t* background) const noexcept {
+  template <bool kCountBackground, bool kClamp>
+  std::uint32_t score(float px, float py, float theta, std::uint32_t* background) const noexcept {
     const maps::OffsetView v = view;
-    const float px = x * inv_res, py = y * inv_res;
     const Rot r = rotation_of(theta);
     alignas(16) float colf[kChunk], rowf[kChunk], dirx[kChunk], diry[kChunk];
     alignas(16) std::int32_t cols[kChunk], rows[kChunk], dcs[kChunk], drs[kChunk];
@@ -159,7 +173,7 @@ struct OffsetKernel {
       for (std::size_t k = 0; k < len; ++k) {
         const float col = px + (r.c * bx[k] - r.s * by[k]);
         const float row = py + (r.s * bx[k] + r.c * by[k]);
-        const int c = maps::floor_to_cell(col), rr = maps::floor_to_cell(row);
+        const int c = to_cell<kClamp>(col), rr = to_cell<kClamp>(row);
         const bool inside = (c >= 0) & (c < v.width) & (rr >= 0) & (rr < v.height);
         colf[k] = col;
         rowf[k] = row;
@@ -203,12 +217,21 @@ struct OffsetKernel {
 // The single piece of code that scores a particle range. Both the serial reference and
 // every OpenMP work item call this same (non-inlined) function, so serial and parallel
 // runs execute identical instructions per particle.
+template <bool kCountBackground, class Kernel>
+std::uint32_t score_particle(const Kernel& k, float x, float y, float theta,
+                             std::uint32_t* background) noexcept {
+  const float px = x * k.inv_res, py = y * k.inv_res;
+  return needs_clamp(px, py, k.reach)
+             ? k.template score<kCountBackground, true>(px, py, theta, background)
+             : k.template score<kCountBackground, false>(px, py, theta, background);
+}
+
 template <class Kernel>
 [[gnu::noinline]] void score_range(const Kernel& k, const float* x, const float* y,
                                    const float* theta, std::size_t begin, std::size_t end,
                                    std::uint32_t* out) noexcept {
   for (std::size_t i = begin; i < end; ++i)
-    out[i] = k.template score<false>(x[i], y[i], theta[i], nullptr);
+    out[i] = score_particle<false>(k, x[i], y[i], theta[i], nullptr);
 }
 
 }  // namespace
@@ -232,6 +255,7 @@ void MeasurementModel::prepare(const LaserScan& scan, std::span<const std::uint3
   const double bins = static_cast<double>(ov.bins);
   const double bins_per_radian = bins / std::numbers::pi;
   const Pose2& mount = scan.sensor_pose;
+  float reach = 0.0f;
   for (std::size_t k = 0; k < m; ++k) {
     const std::uint32_t i = selected[k];
     const double a = scan.beam_angle(i);
@@ -241,6 +265,7 @@ void MeasurementModel::prepare(const LaserScan& scan, std::span<const std::uint3
     const double dir = mount.theta + a;  // beam direction in the base frame
     beams_.ex[k] = static_cast<float>(bx * inv_res);
     beams_.ey[k] = static_cast<float>(by * inv_res);
+    reach = std::max(reach, std::abs(beams_.ex[k]) + std::abs(beams_.ey[k]));
     beams_.ux[k] = static_cast<float>(std::cos(dir));
     beams_.uy[k] = static_cast<float>(std::sin(dir));
     if (oriented) {
@@ -253,6 +278,7 @@ void MeasurementModel::prepare(const LaserScan& scan, std::span<const std::uint3
       beams_.bin[k] = 0.0f;
     }
   }
+  beams_.reach = reach;
 }
 
 namespace {
@@ -263,15 +289,15 @@ void with_kernel(const maps::LikelihoodField& field, const PreparedBeams& b, flo
                  Fn&& fn) {
   switch (field.kind()) {
     case maps::TableKind::kIsotropic:
-      fn(IsotropicKernel{field.isotropic(), b.ex.data(), b.ey.data(), b.size(), inv_res});
+      fn(IsotropicKernel{field.isotropic(), b.ex.data(), b.ey.data(), b.size(), inv_res, b.reach});
       return;
     case maps::TableKind::kOrientedBins:
-      fn(OrientedKernel{field.oriented(), b.ex.data(), b.ey.data(), b.bin.data(), b.size(),
-                        inv_res});
+      fn(OrientedKernel{field.oriented(), b.ex.data(), b.ey.data(), b.bin.data(), b.size(), inv_res,
+                        b.reach});
       return;
     case maps::TableKind::kOffsetField:
       fn(OffsetKernel{field.offset(), b.ex.data(), b.ey.data(), b.ux.data(), b.uy.data(), b.size(),
-                      inv_res});
+                      inv_res, b.reach});
       return;
   }
 }
@@ -302,8 +328,8 @@ void MeasurementModel::score_parallel(std::span<const float> x, std::span<const 
 PoseScore MeasurementModel::score_pose(double x, double y, double theta) const noexcept {
   PoseScore out;
   with_kernel(*field_, beams_, inv_res_, [&](const auto& k) {
-    out.sum_q = k.template score<true>(static_cast<float>(x), static_cast<float>(y),
-                                       static_cast<float>(theta), &out.background);
+    out.sum_q = score_particle<true>(k, static_cast<float>(x), static_cast<float>(y),
+                                     static_cast<float>(theta), &out.background);
   });
   return out;
 }

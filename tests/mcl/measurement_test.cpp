@@ -9,6 +9,7 @@
 #include <memory>
 #include <numbers>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "pgmcl/mcl/beam_selection.hpp"
@@ -196,7 +197,8 @@ TEST_P(MeasurementKinds, SumMatchesOracles) {
 
 // The hot loop's chunked passes against the views' own lookup(), per beam, with the same
 // float arithmetic: the sums must agree exactly, also for poses partly or wholly off the
-// map and for every orientation bin.
+// map, for every orientation bin, and for poses so far off (or NaN) that the kernels take
+// their clamped path (MeasurementModel skips the clamps below |cell| + reach < 5e8).
 TEST_P(MeasurementKinds, KernelsMatchViewLookupsExactly) {
   const KindCase kc = GetParam();
   const test::World world = test::make_room(kc.resolution);
@@ -215,9 +217,17 @@ TEST_P(MeasurementKinds, KernelsMatchViewLookupsExactly) {
   const PreparedBeams& b = model.beams();
   const auto inv_res = static_cast<float>(1.0 / field->resolution());
   Rng rng(5);
-  for (int trial = 0; trial < 200; ++trial) {
-    const auto x = static_cast<float>(rng.uniform(-3.0, 14.0));
-    const auto y = static_cast<float>(rng.uniform(-3.0, 12.0));
+  const double limit_m = 5.0e8 * field->resolution();  // where the clamped path starts
+  const std::vector<std::pair<double, double>> far = {
+      {limit_m * 0.999, 5.0}, {5.0, -limit_m * 1.001}, {limit_m * 4.0, limit_m * 4.0},
+      {-1.0e12, 3.0},         {3.0e38, -3.0e38},       {std::nan(""), 2.0}};
+  for (std::size_t trial = 0; trial < 200 + far.size(); ++trial) {
+    float x = static_cast<float>(rng.uniform(-3.0, 14.0));
+    float y = static_cast<float>(rng.uniform(-3.0, 12.0));
+    if (trial >= 200) {
+      x = static_cast<float>(far[trial - 200].first);
+      y = static_cast<float>(far[trial - 200].second);
+    }
     const auto th = static_cast<float>(rng.uniform(-std::numbers::pi, std::numbers::pi));
     const auto c = static_cast<float>(std::cos(static_cast<double>(th)));
     const auto s = static_cast<float>(std::sin(static_cast<double>(th)));

@@ -51,15 +51,22 @@ enum class TableKind : std::uint8_t { kIsotropic, kOrientedBins, kOffsetField };
 /// Parses "isotropic" | "oriented" | "offset"; throws std::invalid_argument otherwise.
 [[nodiscard]] TableKind table_kind_from_string(const std::string& name);
 
-/// floor() for the hot path: exact for c >= -1024, and still negative (out of bounds)
-/// below that, without a libm call. Coordinates are clamped to +/-1e9 cells first: a float
-/// beyond int range (particles thrown off by absurd odometry) must read "off the map", and
-/// converting it would be undefined behaviour. NaN fails the first comparison and goes to
-/// -1e9 (off the map) too. The ternaries compile to maxss/minss.
+/// floor_to_cell without the clamps: exact for c >= -1024, still negative (off the map)
+/// below that. The caller guarantees |c| < 1e9 (or NaN-free values in int range); the
+/// measurement kernels check that once per particle, because the clamps keep GCC from
+/// vectorising their per-beam transform loops.
+[[nodiscard]] inline int floor_to_cell_unclamped(float c) noexcept {
+  return static_cast<int>(c + 1024.0f) - 1024;
+}
+
+/// floor() for the hot path, without a libm call (see floor_to_cell_unclamped).
+/// Coordinates are clamped to +/-1e9 cells first: a float beyond int range (particles
+/// thrown off by absurd odometry) must read "off the map", and converting it would be
+/// undefined behaviour. NaN fails the first comparison and goes to -1e9 (off the map) too.
 [[nodiscard]] inline int floor_to_cell(float c) noexcept {
   c = c > -1.0e9f ? c : -1.0e9f;
   c = c < 1.0e9f ? c : 1.0e9f;
-  return static_cast<int>(c + 1024.0f) - 1024;
+  return floor_to_cell_unclamped(c);
 }
 
 /// Isotropic table: q[row * width + col].

@@ -29,6 +29,7 @@ struct PreparedBeams {
   std::vector<float> ux;   ///< unit direction x, base frame (offset-field kind)
   std::vector<float> uy;   ///< unit direction y, base frame (offset-field kind)
   std::vector<float> bin;  ///< direction in orientation bins, in [0, bins) (oriented kind)
+  float reach = 0.0f;      ///< max over beams of |ex| + |ey|, cells (bounds any rotation)
 
   [[nodiscard]] std::size_t size() const noexcept { return ex.size(); }
 };

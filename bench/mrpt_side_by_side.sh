@@ -3,7 +3,12 @@
 # (perturbed) odometry and particle counts, in one run:
 #
 #   bench/mrpt_side_by_side.sh [--data DIR] [--out DIR] [--build DIR] [--particles "1000 5000"]
-#                              [--beams 90] [--only LIST] [--full] [-- <pgmcl_sweep options>]
+#                              [--beams 90] [--repeat 3] [--only LIST] [--full]
+#                              [-- <pgmcl_sweep options>]
+#
+# Each setting runs pgmcl and MRPT alternately --repeat times; the table gives each one's
+# median time per update and the ratio of the medians (a shared VM's speed drifts by up
+# to 2x over minutes; alternating and taking medians keeps the ratio honest).
 #
 # MRPT runs through pgmcl_mrpt_harness (bench/mrpt/mrpt_harness.cpp: CMonteCarloLocalization2D
 # + CParticleFilter, SIR, systematic resampling), which needs libmrpt-dev at configure time.
@@ -23,11 +28,13 @@ bench_full_options=1
 out="$root/results/bench/mrpt"
 particles="1000 5000"
 beams=90
+repeat=3
 passthrough=()
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --particles) particles=$2; shift 2 ;;
     --beams) beams=$2; shift 2 ;;
+    --repeat) repeat=$2; shift 2 ;;
     --) shift; passthrough=("$@"); break ;;
     *) bench_option "$@"; shift "$bench_shift" ;;
   esac
@@ -75,12 +82,14 @@ for ds in intel aces fr079 csail; do
   lim=()
   [[ $ds == fr079 && $max_scans -gt 0 ]] && lim=(--max-scans "$max_scans")
   for n in $particles; do
-    echo "== $ds, $n particles, $beams beams" | tee -a "$log"
-    "$sweep" --name "$ds" --map "$yaml" --log "$data/logs/$logf" --truth "$data/logs/$truth" \
-      "${odo[@]}" "${lim[@]}" --particles "$n" --beams "$beams" --kinds isotropic \
-      --csv "$pg_csv" "${passthrough[@]}" 2>&1 | tee -a "$log"
-    "$harness" --name "$ds" --map "$yaml" --log "$data/logs/$logf" --truth "$data/logs/$truth" \
-      "${odo[@]}" "${lim[@]}" --particles "$n" --beams "$beams" --csv "$csv" 2>&1 | tee -a "$log"
+    for ((r = 1; r <= repeat; ++r)); do
+      echo "== $ds, $n particles, $beams beams, run $r of $repeat" | tee -a "$log"
+      "$sweep" --name "$ds" --map "$yaml" --log "$data/logs/$logf" --truth "$data/logs/$truth" \
+        "${odo[@]}" "${lim[@]}" --particles "$n" --beams "$beams" --kinds isotropic \
+        --csv "$pg_csv" "${passthrough[@]}" 2>&1 | tee -a "$log"
+      "$harness" --name "$ds" --map "$yaml" --log "$data/logs/$logf" --truth "$data/logs/$truth" \
+        "${odo[@]}" "${lim[@]}" --particles "$n" --beams "$beams" --csv "$csv" 2>&1 | tee -a "$log"
+    done
   done
 done
 
@@ -89,15 +98,23 @@ awk -F, 'NR > 1 { printf "%s,pgmcl,%s,%.0f,%s,%s,%s,%s,%s\n", $1, $4, $18, $13, 
   "$pg_csv" >>"$csv"
 {
   echo
-  echo "Side by side (time per measurement update; ATE RMSE over every scan):"
+  echo "Side by side (median of $repeat alternating runs; time per measurement update; ATE RMSE"
+  echo "over every scan):"
   printf "%-8s %9s %6s | %10s %10s %7s | %9s %9s\n" dataset particles beams "pgmcl ms" "MRPT ms" \
     "MRPT/pg" "pgmcl ATE" "MRPT ATE"
-  awk -F, 'NR > 1 { k = $1 "," $3; if ($2 == "mrpt") { mt[k] = $6; ma[k] = $8; mb[k] = $4 }
-                    else { pt[k] = $6; pa[k] = $8; pb[k] = $4; order[++n] = k } }
-           END { for (i = 1; i <= n; i++) { k = order[i]; split(k, a, ",");
-                   if (!(k in mt)) continue;
-                   printf "%-8s %9s %3s/%-3s | %10.3f %10.3f %7.1f | %8.3fm %8.3fm\n", a[1], a[2],
-                     pb[k], mb[k], pt[k], mt[k], (pt[k] > 0 ? mt[k] / pt[k] : 0), pa[k], ma[k] } }' \
+  # Columns: 1 dataset 2 engine 3 particles 4 beams_used 5 updates 6 update_ms_mean 8 ATE.
+  awk -F, '
+    function median(list,   v, n, i, j, t) {
+      n = split(list, v, " ")
+      for (i = 2; i <= n; i++) { t = v[i] + 0; for (j = i - 1; j >= 1 && v[j] + 0 > t; j--) v[j + 1] = v[j]; v[j + 1] = t }
+      return n % 2 ? v[(n + 1) / 2] : (v[n / 2] + v[n / 2 + 1]) / 2
+    }
+    NR > 1 { k = $1 "," $3; e = $2; ms[e, k] = ms[e, k] " " $6; ate[e, k] = ate[e, k] " " $8; b[e, k] = $4
+             if (e == "pgmcl" && !(k in seen)) { seen[k] = 1; order[++n] = k } }
+    END { for (i = 1; i <= n; i++) { k = order[i]; if (!(("mrpt", k) in ms)) continue; split(k, a, ",")
+            pt = median(ms["pgmcl", k]); mt = median(ms["mrpt", k])
+            printf "%-8s %9s %3s/%-3s | %10.3f %10.3f %7.1f | %8.3fm %8.3fm\n", a[1], a[2], b["pgmcl", k],
+              b["mrpt", k], pt, mt, (pt > 0 ? mt / pt : 0), median(ate["pgmcl", k]), median(ate["mrpt", k]) } }' \
     "$csv"
   echo "(beams: pgmcl/MRPT per update; MRPT/pg = how many times longer MRPT takes per update)"
 } | tee -a "$log"

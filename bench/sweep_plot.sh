@@ -34,7 +34,7 @@ rows=$(((n + cols - 1) / cols))
 {
   echo "set terminal pngcairo size $((cols * 560)),$((rows * 430)) font ',10'"
   echo "set output '$png'"
-  echo "set multiplot layout $rows,$cols title 'pgmcl: filter time per scan vs ATE (grid study; line = Pareto front; ATE > 1 m off chart)'"
+  echo "set multiplot layout $rows,$cols title 'pgmcl: filter time per scan vs ATE (grid study; line = Pareto front; runs with ATE > 1 m off chart)'"
   echo "set logscale y"
   echo "set xlabel 'ATE RMSE (cm)'"
   echo "set ylabel 'time per scan (ms)'"
@@ -42,10 +42,10 @@ rows=$(((n + cols - 1) / cols))
   echo "set key top left box opaque"
   for ds in "${sets[@]}"; do
     echo "set title '$ds'"
-    echo "set xrange [0:*]"
-    echo "stats '$tmp/$ds.pareto.dat' using 1 nooutput"
-    # Up to 100 cm: a diverged run would squeeze every other point into one pixel.
-    echo "set xrange [0:(STATS_max > 100 ? 100 : STATS_max * 1.15 + 0.1)]"
+    # Every run up to 100 cm: a diverged run would squeeze the others into one pixel.
+    xmax=$(awk -F, -v d="$ds" 'NR > 1 && $1 == d && $2 == "grid" && $19 * 100 <= 100 &&
+      $19 * 100 > m { m = $19 * 100 } END { printf "%.2f", m * 1.1 + 0.1 }' "$csv")
+    echo "set xrange [0:$xmax]"
     echo "plot '$tmp/$ds.isotropic.dat' using 1:2 with points pt 7 ps 0.9 lc rgb '#1f77b4' title 'isotropic', \\"
     echo "     '$tmp/$ds.oriented.dat' using 1:2 with points pt 5 ps 0.9 lc rgb '#ff7f0e' title 'oriented', \\"
     echo "     '$tmp/$ds.offset.dat' using 1:2 with points pt 9 ps 1.0 lc rgb '#2ca02c' title 'offset', \\"

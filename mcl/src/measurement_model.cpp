@@ -214,9 +214,8 @@ struct OffsetKernel {
   }
 };
 
-// The single piece of code that scores a particle range. Both the serial reference and
-// every OpenMP work item call this same (non-inlined) function, so serial and parallel
-// runs execute identical instructions per particle.
+// One particle: metres to cells, then the clamped kernel only if the endpoints could
+// leave the range where the clamps are inactive (needs_clamp).
 template <bool kCountBackground, class Kernel>
 std::uint32_t score_particle(const Kernel& k, float x, float y, float theta,
                              std::uint32_t* background) noexcept {
@@ -226,6 +225,9 @@ std::uint32_t score_particle(const Kernel& k, float x, float y, float theta,
              : k.template score<kCountBackground, false>(px, py, theta, background);
 }
 
+// The single piece of code that scores a particle range. Both the serial reference and
+// every OpenMP work item call this same (non-inlined) function, so serial and parallel
+// runs execute identical instructions per particle.
 template <class Kernel>
 [[gnu::noinline]] void score_range(const Kernel& k, const float* x, const float* y,
                                    const float* theta, std::size_t begin, std::size_t end,

@@ -8,7 +8,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash cmake/setup.sh
 jobs=${PGMCL_JOBS:-2}
-fuzz_seconds=${PGMCL_FUZZ_SECONDS:-60}
+fuzz_seconds=${PGMCL_FUZZ_SECONDS:-45}
 root=$PWD
 t0=$SECONDS
 stage_start=$SECONDS

@@ -29,6 +29,14 @@ TEST_F(ScenarioYaml, UnknownKeysAreReportedWithTheirLine) {
   EXPECT_EQ(e.line(), 4U);
 }
 
+TEST_F(ScenarioYaml, FilterSettingsAreRejectedWithWhereTheyBelong) {
+  // No command applies filter settings from a scenario: accepting them would ignore them.
+  const ScenarioError e = error("seed: 3\nfilter:\n  particles: 500\n");
+  EXPECT_EQ(e.field(), "filter");
+  EXPECT_EQ(e.line(), 4U);  // the mapping's first line, as for every value (yaml_reader.hpp)
+  EXPECT_NE(e.message().find("experiment file"), std::string::npos);
+}
+
 TEST_F(ScenarioYaml, WrongTypesNameTheKey) {
   ScenarioError e = error("duration: fast\n");
   EXPECT_EQ(e.field(), "duration");

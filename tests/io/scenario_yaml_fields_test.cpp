@@ -26,7 +26,6 @@ TEST_F(ScenarioYaml, MinimalFileKeepsEveryDefault) {
   EXPECT_EQ(map.width(), 40);
   EXPECT_EQ(f.name, "s");
   EXPECT_EQ(fs::path(f.map_path), fs::path(dir_.file("maps/room.yaml")).lexically_normal());
-  EXPECT_TRUE(f.filter_yaml.empty());
   const sims::Scenario d;
   const sims::Scenario& s = f.scenario;
   EXPECT_EQ(s.sensor.name, d.sensor.name);
@@ -118,8 +117,6 @@ odometry:
   origin: [10, 20, 1.0]
 kidnaps:
   - {time: 3.0, pose: [2.0, 1.0, -1.0]}
-filter:
-  particles: 500
 )";
   maps::OccupancyGrid map;
   const ScenarioFile f = read_scenario_file(scenario(body), map);
@@ -212,11 +209,6 @@ filter:
   ASSERT_EQ(s.kidnaps.size(), 1U);
   EXPECT_EQ(s.kidnaps[0].time, 3.0);
   EXPECT_TRUE(test::same_pose(s.kidnaps[0].pose, Pose2{2.0, 1.0, -1.0}));
-  EXPECT_NE(f.filter_yaml.find("particles: 500"), std::string::npos);
-  // The line of "particles: 500" (1-based, after the "map:" line scenario() puts first).
-  const auto at = body.find("  particles: 500");
-  EXPECT_EQ(f.filter_line,
-            2 + static_cast<std::size_t>(std::count(body.begin(), body.begin() + at, '\n')));
 }
 
 TEST_F(ScenarioYaml, LabelImagePixelsArePaletteIndices) {

@@ -241,13 +241,12 @@ ScenarioFile ScenarioParser::parse(maps::OccupancyGrid& map) {
   read_robot(root.child("robot"), sc);
   read_odometry(root.child("odometry"), sc.odometry);
   read_kidnaps(root, sc);
+  // A scenario is the world; filter settings read here would be silently ignored by every
+  // command, so they are an error that says where they belong.
   if (root.has("filter")) {
-    const YAML::Node f = root.take("filter");
-    if (!f.IsMap()) root.fail("filter", "expected a mapping of filter settings");
-    YAML::Emitter emitter;
-    emitter << f;
-    out.filter_yaml = emitter.c_str();
-    out.filter_line = root.line("filter");
+    root.fail("filter",
+              "a scenario describes the world only; put filter settings in the experiment "
+              "file's `filter:` (pgmcl run) or a filter YAML (pgmcl localize --config)");
   }
   root.finish();
 

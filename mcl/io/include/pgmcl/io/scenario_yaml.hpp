@@ -39,7 +39,8 @@
 ///               alphas: {a1, a2, a3, a4, a5}, wheel_radius_bias, wheelbase_bias,
 ///               yaw_drift_per_metre, origin: [x, y, theta] }
 ///   kidnaps:  [ {time, pose: [x, y, theta]} ]
-///   filter:   { ... }   # not interpreted here: kept as YAML text for a filter adapter
+///   (no `filter:`: filter settings belong in an experiment or filter file; a scenario
+///   that has one is an error, not silently ignored)
 ///
 /// Errors: any problem throws ScenarioError ("file:line: key: problem"): syntax, wrong
 /// types, unknown keys (typos are never ignored), out-of-range values, and the checks of
@@ -68,11 +69,6 @@ struct ScenarioFile {
   std::string description;  ///< `description:`, may be empty
   std::string map_path;     ///< the map YAML, resolved against the scenario's folder
   sims::Scenario scenario;  ///< validated against the map
-  /// The `filter:` mapping re-emitted as YAML text ("" if absent), for a LocalizerConfig
-  /// adapter; filter_line is the line in `path` where the mapping starts, so that adapter
-  /// can report "path:(filter_line + its line - 1)" for block-style mappings.
-  std::string filter_yaml;
-  std::size_t filter_line = 0;
 };
 
 /// Reads the scenario at `yaml_path`, loads its map into `map` and validates the scenario

@@ -276,7 +276,11 @@ void apply_localizer_override(const std::string& key, const std::string& value,
     parent[*it] = node;
     node = parent;
   }
-  detail::read_localizer_node(source, node, "", cfg);
+  try {
+    detail::read_localizer_node(source, node, "", cfg);
+  } catch (const ConfigError& e) {  // the value's own line 1 would point nowhere
+    throw ConfigError(source, 0, e.field(), e.message());
+  }
 }
 
 void apply_localizer_overrides(const std::vector<std::string>& assignments, LocalizerConfig& cfg) {

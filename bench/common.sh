@@ -43,20 +43,17 @@ bench_option() {
   esac
 }
 
-# bench_configure once|refresh: configures $build (Release, benchmarks on, tests off) if it
-# has never been; `refresh` also re-runs CMake on an existing one (picks up new packages).
+# bench_configure: configures $build (Release, benchmarks on, tests off) if it has never been.
 bench_configure() {
   if [[ ! -f "$build/CMakeCache.txt" ]]; then
     cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DPGMCL_BUILD_BENCH=ON \
       -DPGMCL_BUILD_TESTS=OFF >/dev/null
-  elif [[ $1 == refresh ]]; then
-    cmake "$build" >/dev/null
   fi
 }
 
 # bench_build TARGET...: configures if needed, then builds the targets quietly.
 bench_build() {
-  bench_configure once
+  bench_configure
   cmake --build "$build" -j2 --target "$@" >/dev/null
 }
 

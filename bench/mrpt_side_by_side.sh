@@ -51,7 +51,8 @@ if ! ls /usr/lib/*/cmake/mrpt-slam/mrpt-slam-config.cmake >/dev/null 2>&1; then
   echo "  To run it: apt-get install mrpt-apps libmrpt-dev   (then re-run this script)"
   exit 0
 fi
-bench_configure refresh  # pick up a newly installed libmrpt-dev
+bench_configure
+cmake "$build" -DPGMCL_BUILD_MRPT_HARNESS=ON >/dev/null  # also picks up a new libmrpt-dev
 bench_build pgmcl pgmcl_sweep pgmcl_mrpt_harness
 harness="$build/bench/pgmcl_mrpt_harness"
 sweep="$build/bench/pgmcl_sweep"

@@ -8,7 +8,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash cmake/setup.sh
 jobs=${PGMCL_JOBS:-2}
-fuzz_seconds=${PGMCL_FUZZ_SECONDS:-45}
+fuzz_seconds=${PGMCL_FUZZ_SECONDS:-30}
 root=$PWD
 t0=$SECONDS
 stage_start=$SECONDS
@@ -24,7 +24,9 @@ ctest --test-dir build/release --output-on-failure -j"$jobs"
 stage_done "[1/4]"
 
 echo "== [2/4] Debug + ASan/UBSan build + tests (serial, no OpenMP)"
-cmake -S . -B build/asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" \
+# -g1 (line tables only): sanitizer reports keep file:line, and the stage compiles ~25 %
+# faster than with full -g (its compile time is most of CI's 20-minute budget).
+cmake -S . -B build/asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g1 -O1" \
   -DPGMCL_SANITIZE=ON -DPGMCL_USE_OPENMP=OFF -DPGMCL_WERROR=ON -DPGMCL_BUILD_BENCH=OFF >/dev/null
 cmake --build build/asan -j"$jobs"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
@@ -42,7 +44,8 @@ stage_done "[3/4]"
 
 echo "== [4/4] Fuzzing (${fuzz_seconds}s per target)"
 if [ -d tests/fuzz ] && command -v clang++ >/dev/null; then
-  CXX=clang++ cmake -S . -B build/fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPGMCL_FUZZ=ON \
+  CXX=clang++ cmake -S . -B build/fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" -DPGMCL_FUZZ=ON \
     -DPGMCL_BUILD_TESTS=OFF -DPGMCL_BUILD_BENCH=OFF -DPGMCL_USE_OPENMP=OFF >/dev/null
   cmake --build build/fuzz -j"$jobs" --target pgmcl_fuzzers
   bash tests/fuzz/run_all.sh build/fuzz "$fuzz_seconds"

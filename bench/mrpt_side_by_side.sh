@@ -3,7 +3,7 @@
 # (perturbed) odometry and particle counts, in one run:
 #
 #   bench/mrpt_side_by_side.sh [--data DIR] [--out DIR] [--build DIR] [--particles "1000 5000"]
-#                              [--beams 90] [--repeat 3] [--pgmcl-only "500"] [--only LIST]
+#                              [--beams 90] [--repeat 3] [--pgmcl-only "500 2000 3000"] [--only LIST]
 #                              [--full] [-- <pgmcl_sweep options>]
 #
 # --pgmcl-only  particle counts run for pgmcl alone: the second table compares each MRPT
@@ -33,7 +33,7 @@ out="$root/results/bench/mrpt"
 particles="1000 5000"
 beams=90
 repeat=3
-pgmcl_only="500"
+pgmcl_only="500 2000 3000"
 passthrough=()
 while [[ $# -gt 0 ]]; do
   case "$1" in

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "likelihood_field_detail.hpp"
+#include "pgmcl/sensor_model/sigma_models.hpp"
 
 namespace pgmcl::maps {
 namespace {
@@ -118,12 +119,11 @@ LikelihoodField::LikelihoodField(const OccupancyGrid& grid, const BeamLikelihood
   origin_ = grid.origin();
   const double res = resolution_;
 
-  // Effective sigmas: sensor + uniform position within a cell (variance res^2 / 12) + model
-  // mismatch, added in quadrature.
-  const double extra = (params.add_discretisation ? res * res / 12.0 : 0.0) +
-                       params.model_mismatch * params.model_mismatch;
-  const double sa = std::sqrt(params.sigma_along * params.sigma_along + extra);
-  const double sc = std::sqrt(params.sigma_across * params.sigma_across + extra);
+  // Effective sigmas (sensor_model/sigma_models.hpp): sensor + uniform position within a
+  // cell (variance res^2 / 12, unless switched off) + model mismatch, in quadrature.
+  const double cell = params.add_discretisation ? res : 0.0;
+  const double sa = sensor_model::effective_sigma(params.sigma_along, cell, params.model_mismatch);
+  const double sc = sensor_model::effective_sigma(params.sigma_across, cell, params.model_mismatch);
   stats_.sigma_along_eff = sa;
   stats_.sigma_across_eff = sc;
 

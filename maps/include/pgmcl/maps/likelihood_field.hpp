@@ -42,6 +42,7 @@
 #include <vector>
 
 #include "pgmcl/maps/occupancy_grid.hpp"
+#include "pgmcl/sensor_model/paper_constants.hpp"
 
 namespace pgmcl::maps {
 
@@ -157,8 +158,8 @@ struct OffsetView {
 ///   sigma_eff^2 = sigma^2 + (add_discretisation ? res^2 / 12 : 0) + model_mismatch^2,
 /// see docs in the README ("Effective sigma").
 struct BeamLikelihoodParams {
-  double sigma_along = 5.6894e-3;  ///< metres, Dekan et al. Section 5
-  double sigma_across = 3.0e-3;    ///< metres, Dekan et al. Section 5
+  double sigma_along = sensor_model::paper::kSigmaAlong;    ///< metres, Dekan et al. Section 5
+  double sigma_across = sensor_model::paper::kSigmaAcross;  ///< metres, Dekan et al. Section 5
   double model_mismatch = 0.0;     ///< metres, added in quadrature to both sigmas
   bool add_discretisation = true;  ///< add res^2/12 (uniform position within a cell)
   double w_hit = 0.95;             ///< mixture weight of the Gaussian hit term, in [0, 1]

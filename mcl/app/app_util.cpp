@@ -1,5 +1,6 @@
 #include "app_util.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <system_error>
@@ -79,13 +80,21 @@ io::CarmenLog read_log(const std::string& path, const io::CarmenReadOptions& opt
   o.strict = strict;
   io::CarmenLog log = io::read_carmen(path, o);
   const io::ParseReport& r = log.report;
-  if (r.malformed > 0 && !r.malformed_lines.empty()) {
-    const io::LineIssue& i = r.malformed_lines.front();
+  if (r.malformed > 0) {
+    // Every dropped line by number (up to a screenful): a user fixing a log needs all of
+    // them, not just the first.
+    constexpr std::size_t kListed = 20;
     std::fprintf(stderr,
-                 "pgmcl: warning: %s: dropped %zu malformed line(s), first %s:%zu: %s: %s "
-                 "(use --strict to make this an error)\n",
-                 path.c_str(), r.malformed, path.c_str(), i.line, i.field.c_str(),
-                 i.message.c_str());
+                 "pgmcl: warning: %s: dropped %zu malformed line(s) (use --strict to make this an "
+                 "error):\n",
+                 path.c_str(), r.malformed);
+    const std::size_t listed = std::min(kListed, r.malformed_lines.size());
+    for (std::size_t k = 0; k < listed; ++k) {
+      const io::LineIssue& i = r.malformed_lines[k];
+      std::fprintf(stderr, "  %s:%zu: %s: %s\n", path.c_str(), i.line, i.field.c_str(),
+                   i.message.c_str());
+    }
+    if (r.malformed > listed) std::fprintf(stderr, "  ... %zu more\n", r.malformed - listed);
   }
   return log;
 }

@@ -109,7 +109,9 @@ TEST(CliMap, BadInputsNameFileLineAndField) {
   TempDir dir("cli_map_errors");
   cli_test::write_text(dir.file("bad.log"),
                        "FLASER 3 1.0 1.0 1.0 0 0 0 0 0 0 1.0 host 1.0\n"
-                       "FLASER 3 1.0 oops 1.0 0 0 0 0 0 0 2.0 host 2.0\n");
+                       "FLASER 3 1.0 oops 1.0 0 0 0 0 0 0 2.0 host 2.0\n"
+                       "FLASER 3 1.0 1.0 1.0 0 0 0 0 0 0 3.0 host 3.0\n"
+                       "FLASER 3 1.0 1.0\n");
   RunResult r = run_pgmcl("map --log bad.log --out m.yaml --strict", dir);
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("pgmcl: error: "), std::string::npos) << r.err;
@@ -117,11 +119,13 @@ TEST(CliMap, BadInputsNameFileLineAndField) {
   EXPECT_NE(r.err.find("range"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("terminate"), std::string::npos);
 
-  // Without --strict the line is dropped with a warning naming it, and the map is built.
+  // Without --strict the lines are dropped with a warning naming each, and the map is built.
   r = run_pgmcl("map --log bad.log --out m.yaml", dir);
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("pgmcl: warning: "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("dropped 2 malformed line(s)"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("bad.log:2"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("bad.log:4"), std::string::npos) << r.err;
 
   r = run_pgmcl("map --log bad.log --out m.yaml --resolution -1", dir);
   EXPECT_EQ(r.code, 2);

@@ -1,6 +1,7 @@
 // Image <-> occupancy values, following nav2_map_server's map_io.cpp (loadMapFromFile,
 // saveMapToFile) so that maps mean here what they mean in ROS.
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -170,7 +171,23 @@ OccupancyGrid load_map_image(const std::string& image_path, const MapMetadata& m
   return grid;
 }
 
-void save_map_image(const OccupancyGrid& grid, const std::string& image_path) {
+namespace {
+
+/// map_saver's trinary pixel for a cell.
+std::uint8_t trinary_pixel(std::int8_t v, std::int8_t occ_min) noexcept {
+  if (v < 0 || v > kOccupied) return kPixelUnknown;
+  if (v >= occ_min) return kPixelOccupied;
+  if (v <= kSaveFreeMax) return kPixelFree;
+  return kPixelUnknown;
+}
+
+bool is_known(std::int8_t v) noexcept {
+  return v >= 0 && v <= kOccupied;
+}
+
+}  // namespace
+
+void save_map_image(const OccupancyGrid& grid, const std::string& image_path, MapMode mode) {
   const bool gz = ends_with(image_path, ".pgm.gz");
   const bool png = ends_with(image_path, ".png");
   if (!gz && !png && !ends_with(image_path, ".pgm")) {
@@ -178,27 +195,40 @@ void save_map_image(const OccupancyGrid& grid, const std::string& image_path) {
                    "unsupported extension for saving (use .pgm, .pgm.gz or .png)");
   }
   if (grid.empty()) throw MapError(image_path, 0, "image", "cannot save an empty grid");
+  if (mode == MapMode::kRaw) {
+    throw MapError(image_path, 0, "mode",
+                   "saving raw maps is not supported (use trinary or scale)");
+  }
+  const bool scale = mode == MapMode::kScale;
+  // Scale mode marks unknown cells transparent, as map_saver does; only PNG has alpha.
+  const bool alpha = scale && !std::all_of(grid.cells().begin(), grid.cells().end(), is_known);
+  if (alpha && !png) {
+    throw MapError(image_path, 0, "image",
+                   "a scale map with unknown cells needs an alpha channel: save it as .png");
+  }
   detail::Image img;
   img.width = grid.width();
   img.height = grid.height();
-  img.channels = 1;
+  img.channels = alpha ? 2 : 1;
   img.maxval = 255;
-  img.samples.resize(grid.size());
+  img.samples.resize(grid.size() * static_cast<std::size_t>(img.channels));
   const std::int8_t occ_min = grid.occupied_threshold();
   for (int row = 0; row < grid.height(); ++row) {
     const int y = grid.height() - 1 - row;
     for (int col = 0; col < grid.width(); ++col) {
       const std::int8_t v = grid.at(col, row);
-      std::uint8_t pixel = kPixelUnknown;
-      if (v < 0 || v > kOccupied) {
-        pixel = kPixelUnknown;
-      } else if (v >= occ_min) {
-        pixel = kPixelOccupied;
-      } else if (v <= kSaveFreeMax) {
-        pixel = kPixelFree;
+      std::uint16_t* px =
+          &img.samples[(static_cast<std::size_t>(y) * static_cast<std::size_t>(img.width) +
+                        static_cast<std::size_t>(col)) *
+                       static_cast<std::size_t>(img.channels)];
+      if (!scale) {
+        px[0] = trinary_pixel(v, occ_min);
+      } else if (is_known(v)) {
+        px[0] = static_cast<std::uint16_t>(std::lround(255.0 * (kOccupied - v) / kOccupied));
+      } else {
+        px[0] = kPixelUnknown;
       }
-      img.samples[static_cast<std::size_t>(y) * static_cast<std::size_t>(img.width) +
-                  static_cast<std::size_t>(col)] = pixel;
+      if (alpha) px[1] = is_known(v) ? 255 : 0;
     }
   }
   detail::Bytes bytes;

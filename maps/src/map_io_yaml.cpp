@@ -218,22 +218,22 @@ OccupancyGrid load_map(const std::string& yaml_path, MapLoadReport* report) {
 }
 
 void save_map(const OccupancyGrid& grid, const std::string& yaml_path,
-              const std::string& image_name) {
+              const std::string& image_name, MapMode mode) {
   fs::path yaml(yaml_path);
   if (!std::isfinite(grid.origin().x) || !std::isfinite(grid.origin().y) ||
       !std::isfinite(grid.origin().theta)) {
     throw MapError(yaml_path, 0, "origin", "the grid's origin is not finite");
   }
   std::string name = image_name;
-  if (name.empty()) name = yaml.stem().string() + ".pgm";
+  if (name.empty()) name = yaml.stem().string() + (mode == MapMode::kScale ? ".png" : ".pgm");
   const fs::path image = fs::path(name).is_absolute() ? fs::path(name) : yaml.parent_path() / name;
-  save_map_image(grid, image.string());
+  save_map_image(grid, image.string(), mode);
 
   // Keys and order as nav2's map_saver writes them.
   YAML::Emitter out;
   out << YAML::BeginMap;
   out << YAML::Key << "image" << YAML::Value << name;
-  out << YAML::Key << "mode" << YAML::Value << "trinary";
+  out << YAML::Key << "mode" << YAML::Value << to_string(mode);
   out << YAML::Key << "resolution" << YAML::Value << detail::format_double(grid.resolution());
   out << YAML::Key << "origin" << YAML::Value << YAML::Flow << YAML::BeginSeq
       << detail::format_double(grid.origin().x) << detail::format_double(grid.origin().y)

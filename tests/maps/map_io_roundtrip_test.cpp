@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <random>
 #include <string>
@@ -103,6 +104,57 @@ TEST(MapIoRoundTrip, SaveRejectsUnknownExtensionAndNonFiniteOrigin) {
   const OccupancyGrid bad = random_trinary_grid(4, 3, 0.05, {std::nan(""), 0.0, 0.0}, 1);
   test::expect_map_error([&] { save_map(bad, dir.file("y.yaml")); }, {"y.yaml", "origin"});
   test::expect_map_error([&] { save_map(grid, dir.file("no/such/dir/z.yaml")); }, {"z.pgm"});
+}
+
+/// What map_server's scale rule reads back from a cell saved in scale mode.
+std::int8_t reloaded_scale_value(std::int8_t v) {
+  if (v < 0) return kUnknown;  // transparent: only an alpha channel makes grey 205 unknown
+  const double occ = 1.0 - static_cast<double>(std::lround(255.0 * (100 - v) / 100.0)) / 255.0;
+  if (occ > 0.65) return kOccupied;
+  if (occ < 0.196) return kFree;
+  return static_cast<std::int8_t>(std::rint((occ - 0.196) / (0.65 - 0.196) * 100.0));
+}
+
+// Scale mode keeps probabilities: each cell is written as grey (100 - v) / 100 and reloaded
+// through map_server's scale rule; unknown cells are transparent, so they need a PNG.
+TEST(MapIoRoundTrip, ScaleModeKeepsIntermediateProbabilities) {
+  OccupancyGrid grid(8, 2, 0.05, {1.0, 2.0, 0.0}, kFree);
+  const std::int8_t row0[] = {kFree, kOccupied, kUnknown, 10, 30, 50, 66, 90};
+  for (int c = 0; c < 8; ++c) grid.set(c, 0, row0[c]);
+  const TempDir dir;
+  save_map(grid, dir.file("s.yaml"), "", MapMode::kScale);
+  const std::string yaml = testkit::read_text(dir.file("s.yaml"));
+  EXPECT_NE(yaml.find("image: s.png\n"), std::string::npos) << yaml;
+  EXPECT_NE(yaml.find("mode: scale\n"), std::string::npos) << yaml;
+  const OccupancyGrid back = load_map(dir.file("s.yaml"));
+  for (int c = 0; c < 8; ++c) {
+    EXPECT_EQ(back.at(c, 0), reloaded_scale_value(row0[c])) << "cell value " << int{row0[c]};
+  }
+  EXPECT_EQ(back.at(2, 0), kUnknown);
+  EXPECT_EQ(back.at(5, 0), 67);  // 50 % -> grey 128 -> occ 0.498
+  EXPECT_EQ(back.at(7, 0), kOccupied);
+  EXPECT_EQ(back.at(3, 1), kFree);
+  // -1/0/100 grids reload identically in scale mode too, and a PGM is fine when no cell is
+  // unknown.
+  const OccupancyGrid tri = random_trinary_grid(9, 5, 0.05, {}, 3);
+  save_map(tri, dir.file("t.yaml"), "", MapMode::kScale);
+  expect_same_grid(tri, load_map(dir.file("t.yaml")));
+  OccupancyGrid known(3, 3, 0.05, {}, kFree);
+  known.set(1, 1, 40);
+  save_map(known, dir.file("k.yaml"), "k.pgm", MapMode::kScale);
+  EXPECT_EQ(load_map(dir.file("k.yaml")).at(1, 1), reloaded_scale_value(40));
+}
+
+TEST(MapIoRoundTrip, ScaleModeRefusesPgmWithUnknownCellsAndRawIsRefused) {
+  OccupancyGrid grid(3, 3, 0.05, {}, kFree);
+  grid.set(0, 0, kUnknown);
+  const TempDir dir;
+  test::expect_map_error([&] { save_map(grid, dir.file("a.yaml"), "a.pgm", MapMode::kScale); },
+                         {"a.pgm", "alpha", ".png"});
+  test::expect_map_error([&] { save_map(grid, dir.file("b.yaml"), "b.pgm", MapMode::kRaw); },
+                         {"b.pgm", "mode", "raw"});
+  EXPECT_FALSE(std::filesystem::exists(dir.file("a.yaml")));
+  EXPECT_FALSE(std::filesystem::exists(dir.file("b.pgm")));
 }
 
 }  // namespace

@@ -81,17 +81,26 @@ struct MapLoadReport {
 /// Loads an image file as a grid using `meta` (meta.image is ignored; `image_path` is read).
 [[nodiscard]] OccupancyGrid load_map_image(const std::string& image_path, const MapMetadata& meta);
 
-/// Writes the grid as a trinary image (values as in save_map); the format follows the
-/// extension of `image_path`: ".pgm", ".pgm.gz" or ".png".
-void save_map_image(const OccupancyGrid& grid, const std::string& image_path);
+/// Writes the grid as an image in `mode` (pixel values as in save_map); the format follows
+/// the extension of `image_path`: ".pgm", ".pgm.gz" or ".png".
+void save_map_image(const OccupancyGrid& grid, const std::string& image_path,
+                    MapMode mode = MapMode::kTrinary);
 
-/// Writes `yaml_path` and its image next to it, as nav2's map_saver does in trinary mode:
-/// free (0 .. 25) -> 254, occupied (>= grid.occupied_threshold()) -> 0, anything else
-/// (unknown, out of range, in between) -> 205. The YAML gets occupied_thresh 0.65 and
-/// free_thresh 0.196, so a grid of -1/0/100 reloads identically.
-/// `image_name` (relative to the YAML's folder) defaults to the YAML's stem + ".pgm";
-/// its extension picks the format: ".pgm" (P5), ".pgm.gz" (gzipped P5) or ".png".
+/// Writes `yaml_path` and its image next to it, as nav2's map_saver does (saveMapToFile):
+///  - trinary: free (0 .. 25) -> 254, occupied (>= grid.occupied_threshold()) -> 0, anything
+///    else (unknown, out of range, in between) -> 205;
+///  - scale: a cell v in 0 .. 100 (occupancy in percent) -> grey round(255 * (100 - v) / 100),
+///    opaque, so intermediate probabilities are kept rather than thresholded; anything else
+///    (unknown) -> transparent (alpha 0, grey 205). Unknown cells therefore need an alpha
+///    channel: PNG (grey + alpha); a PGM is refused for a grid with unknown cells.
+///  - raw: refused (MapError).
+/// The YAML gets `mode`, occupied_thresh 0.65 and free_thresh 0.196, so a grid of -1/0/100
+/// reloads identically in either mode; in scale mode a cell in between reloads through the
+/// loader's scale rule (v = 50 -> occ 0.498 -> 67), as with map_server.
+/// `image_name` (relative to the YAML's folder) defaults to the YAML's stem + ".pgm"
+/// (trinary) or ".png" (scale); its extension picks the format: ".pgm" (P5), ".pgm.gz"
+/// (gzipped P5) or ".png".
 void save_map(const OccupancyGrid& grid, const std::string& yaml_path,
-              const std::string& image_name = "");
+              const std::string& image_name = "", MapMode mode = MapMode::kTrinary);
 
 }  // namespace pgmcl::maps

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <system_error>
 
 #include "pgmcl/io/cli_errors.hpp"
@@ -65,7 +66,76 @@ CLI::Validator number_check(bool (*ok)(double), const char* rule, const char* na
       rule, name);
 }
 
+std::string format_g(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+/// "in [0, 1)", ">= 0", "a whole number >= 1".
+std::string describe_rule(const ValueRule& r) {
+  const std::string kind = r.integer ? "a whole number " : "";
+  if (std::isinf(r.hi)) return kind + (r.lo_open ? "> " : ">= ") + format_g(r.lo);
+  if (std::isinf(r.lo)) return kind + (r.hi_open ? "< " : "<= ") + format_g(r.hi);
+  return kind + "in " + (r.lo_open ? "(" : "[") + format_g(r.lo) + ", " + format_g(r.hi) +
+         (r.hi_open ? ")" : "]");
+}
+
 }  // namespace
+
+std::vector<double> parse_checked_list(std::string_view text, std::string_view option,
+                                       std::initializer_list<ValueRule> rules,
+                                       std::size_t required) {
+  std::string form;
+  std::size_t k = 0;
+  for (const ValueRule& r : rules) {
+    if (k == required && k > 0) form += "[";
+    if (k > 0) form += ",";
+    form += r.name;
+    ++k;
+  }
+  if (required < rules.size()) form += "]";
+  // parse_number_list takes the allowed counts as an initializer_list: required .. size,
+  // which covers every use (at most three numbers, at most two of them optional).
+  if (rules.size() > 3 || required == 0 || required > rules.size()) {
+    throw std::logic_error("parse_checked_list: unsupported rule list");
+  }
+  const std::size_t n = rules.size();
+  const std::vector<double> v =
+      io::parse_number_list(text, option, {required, std::min(required + 1, n), n}, form);
+  auto rule = rules.begin();
+  for (const double x : v) {
+    const ValueRule& r = *rule++;
+    const bool below = r.lo_open ? !(x > r.lo) : !(x >= r.lo);
+    const bool above = r.hi_open ? !(x < r.hi) : !(x <= r.hi);
+    if (below || above || (r.integer && x != std::floor(x))) {
+      throw io::UsageError(std::string(option) + ": " + std::string(r.name) + " must be " +
+                           describe_rule(r) + ", got " + format_g(x) + " (in '" +
+                           std::string(text) + "')");
+    }
+  }
+  return v;
+}
+
+DeprecatedName::DeprecatedName(CLI::App& sub, CLI::Option* current, const std::string& old_name,
+                               std::string& target)
+    : old_name_(old_name), new_name_(current->get_name()) {
+  CLI::Option* old = sub.add_option(old_name, target, "Deprecated name of " + new_name_)
+                         ->group("Deprecated")
+                         ->excludes(current);
+  old_ = old;
+}
+
+const std::string& DeprecatedName::used() const noexcept {
+  return old_ != nullptr && old_->count() > 0 ? old_name_ : new_name_;
+}
+
+void DeprecatedName::note_if_used() const {
+  if (old_ != nullptr && old_->count() > 0) {
+    std::fprintf(stderr, "pgmcl: warning: %s is deprecated, use %s\n", old_name_.c_str(),
+                 new_name_.c_str());
+  }
+}
 
 CLI::Validator positive() {
   return number_check([](double v) { return v > 0.0; }, "> 0", "POSITIVE");

@@ -2,9 +2,13 @@
 /// Small helpers shared by the pgmcl subcommands.
 
 #include <CLI/CLI.hpp>
+#include <cstddef>
 #include <filesystem>
+#include <initializer_list>
+#include <limits>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "pgmcl/io/carmen.hpp"
 
@@ -34,6 +38,44 @@ void ensure_parent_directory(const std::string& file);
 /// CLI11 checks with short messages ("must be > 0" rather than CLI11's range dump).
 [[nodiscard]] CLI::Validator positive();
 [[nodiscard]] CLI::Validator non_negative();
+
+/// One number of a comma-separated option value ("--glitch RATE,DEG") and the interval it
+/// must lie in.
+struct ValueRule {
+  std::string_view name;  ///< as in the help text: "RATE", "DEG"
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = std::numeric_limits<double>::infinity();
+  bool lo_open = false;  ///< true: lo itself is refused
+  bool hi_open = false;  ///< true: hi itself is refused
+  bool integer = false;  ///< a whole number
+};
+
+/// Parses `text` as NAME1,NAME2,... following `rules`: the first `required` numbers must be
+/// given, the others are optional (the result holds only those given). Every number must be
+/// finite and within its rule. Throws UsageError naming the option, the number and the text:
+/// "--glitch: RATE must be in [0, 1], got 1.5 (in '1.5,30')".
+[[nodiscard]] std::vector<double> parse_checked_list(std::string_view text, std::string_view option,
+                                                     std::initializer_list<ValueRule> rules,
+                                                     std::size_t required);
+
+/// An option's old name, kept working as an alias: both names set the same variable, at most
+/// one of them may be given, and using the old one prints a one-line note on stderr.
+class DeprecatedName {
+ public:
+  DeprecatedName() = default;
+  /// Registers `old_name` on `sub` for the variable of `current` (group "Deprecated").
+  DeprecatedName(CLI::App& sub, CLI::Option* current, const std::string& old_name,
+                 std::string& target);
+  /// The name the user gave (the old one if it was used, else the current one).
+  [[nodiscard]] const std::string& used() const noexcept;
+  /// "pgmcl: warning: --truth is deprecated, use --truth-out" if the old name was used.
+  void note_if_used() const;
+
+ private:
+  const CLI::Option* old_ = nullptr;
+  std::string old_name_;
+  std::string new_name_;
+};
 
 /// "12.3 s" / "1.23 ms" style durations for summaries.
 [[nodiscard]] std::string format_seconds(double s);

@@ -13,15 +13,15 @@
 namespace pgmcl {
 namespace {
 
-using cli_test::RunResult;
 using cli_test::run_pgmcl;
+using cli_test::RunResult;
 using cli_test::TempDir;
 
 /// room.yaml (mapped from the exact log), raw.log (noisy odometry), truth.tum.
 void prepare(const TempDir& dir) {
   ASSERT_EQ(cli_test::map_room(dir, 60, "room.yaml").code, 0);
   ASSERT_EQ(run_pgmcl("perturb --log corrected.log --odom-noise 0.01,0.001,0.01,0.001 --seed 4 "
-                      "--out raw.log --truth truth.tum",
+                      "--out raw.log --truth-out truth.tum",
                       dir)
                 .code,
             0);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cli_test_util.hpp"
+#include "perturb_test_util.hpp"
 #include "pgmcl/io/carmen.hpp"
 #include "pgmcl/io/carmen_writer.hpp"
 #include "pgmcl/io/tum.hpp"
@@ -15,41 +16,22 @@
 namespace pgmcl {
 namespace {
 
-using cli_test::RunResult;
 using cli_test::run_pgmcl;
+using cli_test::RunResult;
 using cli_test::TempDir;
 
-/// A zig-zag path of `n` poses made of identical increments (rot1, trans, rot2), so the
-/// noise model's variances are the same for every step.
-std::vector<Pose2> zigzag(int n, double rot1, double trans, double rot2) {
-  std::vector<Pose2> p{{2.0, 2.0, 0.3}};
-  for (int k = 1; k < n; ++k) {
-    const Pose2& q = p.back();
-    const double h = q.theta + rot1;
-    p.push_back({q.x + trans * std::cos(h), q.y + trans * std::sin(h), wrap_angle(h + rot2)});
-  }
-  return p;
-}
-
-void write_log(const TempDir& dir, const std::vector<Pose2>& poses, int beams = 5) {
-  io::write_carmen(dir.file("in.log"), cli_test::room_log(cli_test::Room{}, poses, beams));
-}
-
-struct Output {
-  io::CarmenLog raw;
-  io::Trajectory truth;
-};
-
-Output read_output(const TempDir& dir) {
-  return {io::read_carmen(dir.file("raw.log")), io::read_tum(dir.file("truth.tum"))};
-}
+using perturb_test::Output;
+using perturb_test::read_output;
+using perturb_test::write_log;
+using perturb_test::zigzag;
 
 TEST(CliPerturb, ZeroNoiseReproducesTruthIncrements) {
   TempDir dir("cli_perturb_zero");
   const auto poses = zigzag(50, 0.3, 0.4, -0.5);
   write_log(dir, poses);
   const RunResult r = run_pgmcl(
-      "perturb --log in.log --odom-noise 0,0,0,0 --seed 3 --out raw.log --truth truth.tum", dir);
+      "perturb --log in.log --odom-noise 0,0,0,0 --seed 3 --out raw.log --truth-out truth.tum",
+      dir);
   ASSERT_EQ(r.code, 0) << r.err;
   const Output o = read_output(dir);
   ASSERT_EQ(o.truth.size(), poses.size());
@@ -78,11 +60,11 @@ TEST(CliPerturb, SeededRunsAreReproducible) {
   TempDir dir("cli_perturb_seed");
   write_log(dir, zigzag(40, 0.1, 0.5, 0.05));
   const std::string base = "perturb --log in.log --odom-noise 0.01,0.001,0.01,0.001 ";
-  ASSERT_EQ(run_pgmcl(base + "--seed 11 --out raw.log --truth truth.tum", dir).code, 0);
+  ASSERT_EQ(run_pgmcl(base + "--seed 11 --out raw.log --truth-out truth.tum", dir).code, 0);
   const std::string a = cli_test::read_text(dir.file("raw.log"));
-  ASSERT_EQ(run_pgmcl(base + "--seed 11 --out raw.log --truth truth.tum", dir).code, 0);
+  ASSERT_EQ(run_pgmcl(base + "--seed 11 --out raw.log --truth-out truth.tum", dir).code, 0);
   EXPECT_EQ(cli_test::read_text(dir.file("raw.log")), a);
-  ASSERT_EQ(run_pgmcl(base + "--seed 12 --out raw.log --truth truth.tum", dir).code, 0);
+  ASSERT_EQ(run_pgmcl(base + "--seed 12 --out raw.log --truth-out truth.tum", dir).code, 0);
   EXPECT_NE(cli_test::read_text(dir.file("raw.log")), a);
 }
 
@@ -95,7 +77,7 @@ TEST(CliPerturb, IncrementNoiseMatchesTheAlphaModel) {
   const double a1 = 0.01, a2 = 0.002, a3 = 0.01, a4 = 0.004;
   const RunResult r = run_pgmcl(
       "perturb --log in.log --odom-noise 0.01,0.002,0.01,0.004 --seed 5 --out raw.log "
-      "--truth truth.tum --quiet",
+      "--truth-out truth.tum --quiet",
       dir);
   ASSERT_EQ(r.code, 0) << r.err;
   const Output o = read_output(dir);
@@ -128,8 +110,8 @@ TEST(CliPerturb, BiasScalesTranslationAndDriftsHeading) {
   const auto poses = zigzag(20, 0.0, 0.5, 0.1);
   write_log(dir, poses);
   const RunResult r = run_pgmcl(
-      "perturb --log in.log --odom-noise 0,0,0,0 --seed 1 --bias-scale 0.02 "
-      "--bias-yaw-deg-per-m 0.5 --out raw.log --truth truth.tum",
+      "perturb --log in.log --odom-noise 0,0,0,0 --seed 1 --scale-bias 0.02 "
+      "--yaw-drift 0.5 --out raw.log --truth-out truth.tum",
       dir);
   ASSERT_EQ(r.code, 0) << r.err;
   const Output o = read_output(dir);
@@ -144,14 +126,16 @@ TEST(CliPerturb, BadArgumentsAreUsageErrors) {
   TempDir dir("cli_perturb_bad");
   write_log(dir, zigzag(5, 0.1, 0.5, 0.0));
   RunResult r = run_pgmcl(
-      "perturb --log in.log --odom-noise 0.1,0.1,0.1 --seed 1 --out raw.log --truth t.tum", dir);
+      "perturb --log in.log --odom-noise 0.1,0.1,0.1 --seed 1 --out raw.log --truth-out t.tum",
+      dir);
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--odom-noise: expected A1,A2,A3,A4"), std::string::npos) << r.err;
   r = run_pgmcl(
-      "perturb --log in.log --odom-noise 0.1,-0.1,0.1,0 --seed 1 --out raw.log --truth t.tum", dir);
+      "perturb --log in.log --odom-noise 0.1,-0.1,0.1,0 --seed 1 --out raw.log --truth-out t.tum",
+      dir);
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("A2 must be >= 0"), std::string::npos) << r.err;
-  r = run_pgmcl("perturb --log in.log --odom-noise 0,0,0,0 --out raw.log --truth t.tum", dir);
+  r = run_pgmcl("perturb --log in.log --odom-noise 0,0,0,0 --out raw.log --truth-out t.tum", dir);
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--seed"), std::string::npos) << r.err;
 }

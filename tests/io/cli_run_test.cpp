@@ -13,8 +13,8 @@
 namespace pgmcl {
 namespace {
 
-using cli_test::RunResult;
 using cli_test::run_pgmcl;
+using cli_test::RunResult;
 using cli_test::TempDir;
 
 /// room.yaml (the synthetic room, mapped) and a short scenario driving a loop in it.
@@ -96,7 +96,7 @@ TEST(CliRun, ExperimentWithALogAndOverrides) {
   TempDir dir("cli_run_log");
   prepare(dir);
   ASSERT_EQ(run_pgmcl("perturb --log corrected.log --odom-noise 0.005,0.0005,0.005,0.0005 "
-                      "--seed 2 --out raw.log --truth truth.tum --quiet",
+                      "--seed 2 --out raw.log --truth-out truth.tum --quiet",
                       dir)
                 .code,
             0);

@@ -18,6 +18,7 @@ Command add_run_command(CLI::App& app);
 Command add_simulate_command(CLI::App& app);
 Command add_map_command(CLI::App& app);
 Command add_perturb_command(CLI::App& app);
+Command add_perturb_map_command(CLI::App& app);
 Command add_eval_command(CLI::App& app);
 Command add_kernel_command(CLI::App& app);
 Command add_calibrate_command(CLI::App& app);

@@ -18,10 +18,11 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.fallthrough(false);
   const std::vector<pgmcl::app::Command> commands = {
-      pgmcl::app::add_localize_command(app), pgmcl::app::add_run_command(app),
-      pgmcl::app::add_simulate_command(app), pgmcl::app::add_map_command(app),
-      pgmcl::app::add_perturb_command(app),  pgmcl::app::add_eval_command(app),
-      pgmcl::app::add_kernel_command(app),   pgmcl::app::add_calibrate_command(app),
+      pgmcl::app::add_localize_command(app),  pgmcl::app::add_run_command(app),
+      pgmcl::app::add_simulate_command(app),  pgmcl::app::add_map_command(app),
+      pgmcl::app::add_perturb_command(app),   pgmcl::app::add_perturb_map_command(app),
+      pgmcl::app::add_eval_command(app),      pgmcl::app::add_kernel_command(app),
+      pgmcl::app::add_calibrate_command(app),
   };
   return pgmcl::io::run_reporting_errors(
       [&]() -> int {

@@ -13,16 +13,16 @@
 namespace pgmcl {
 namespace {
 
-using cli_test::RunResult;
 using cli_test::run_pgmcl;
+using cli_test::RunResult;
 using cli_test::TempDir;
 
 TEST(CliCommands, AllSubcommandsAreRegistered) {
   TempDir dir("cli_commands_help");
   const RunResult r = run_pgmcl("--help", dir);
   ASSERT_EQ(r.code, 0) << r.err;
-  for (const char* c :
-       {"localize", "run", "simulate", "map", "perturb", "eval", "kernel", "calibrate"}) {
+  for (const char* c : {"localize", "run", "simulate", "map", "perturb", "perturb-map", "eval",
+                        "kernel", "calibrate"}) {
     EXPECT_NE(r.out.find(std::string("  ") + c + " "), std::string::npos) << c;
   }
   const RunResult none = run_pgmcl("", dir);

@@ -7,15 +7,12 @@
 #include <vector>
 
 #include "cli_test_util.hpp"
+#include "perturb_test_util.hpp"
 #include "pgmcl/maps/map_io.hpp"
 
-namespace pgmcl {
+namespace pgmcl::perturb_test {
 namespace {
 
-using cli_test::read_text;
-using cli_test::run_pgmcl;
-using cli_test::RunResult;
-using cli_test::TempDir;
 using maps::kFree;
 using maps::kOccupied;
 using maps::kUnknown;
@@ -53,12 +50,16 @@ OccupancyGrid room_map() {
   return g;
 }
 
+/// Saves `in` as in.yaml (+ in.pgm) in `dir` and runs `perturb-map --map in.yaml <args>`.
+RunResult perturb_map(const TempDir& dir, const OccupancyGrid& in, const std::string& args) {
+  maps::save_map(in, dir.file("in.yaml"));
+  return run_pgmcl("perturb-map --map in.yaml " + args, dir);
+}
+
 TEST(CliPerturbMap, EraseFreesTheWallsOfTheRequestedFractionOfBlocks) {
   TempDir dir("cli_perturb_map_erase");
   const OccupancyGrid in = lattice_map();
-  maps::save_map(in, dir.file("in.yaml"));
-  const RunResult r =
-      run_pgmcl("perturb-map --map in.yaml --out out.yaml --erase 0.3,0.5 --seed 2", dir);
+  const RunResult r = perturb_map(dir, in, "--out out.yaml --erase 0.3,0.5 --seed 2");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("erased 108 of 360 wall blocks"), std::string::npos) << r.out;
   EXPECT_NE(read_text(dir.file("out.yaml")).find("mode: trinary"), std::string::npos);
@@ -109,9 +110,7 @@ int obstacle_run(const OccupancyGrid& g, int row, int col) {
 TEST(CliPerturbMap, ThickenAndBlurGiveFuzzyWallsThatStillLoadAsObstacles) {
   TempDir dir("cli_perturb_map_fuzzy");
   const OccupancyGrid in = room_map();
-  maps::save_map(in, dir.file("room.yaml"));
-  const RunResult r =
-      run_pgmcl("perturb-map --map room.yaml --out fuzzy.yaml --thicken 1 --blur 1", dir);
+  const RunResult r = perturb_map(dir, in, "--out fuzzy.yaml --thicken 1 --blur 1");
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string yaml = read_text(dir.file("fuzzy.yaml"));
   EXPECT_NE(yaml.find("image: fuzzy.png\n"), std::string::npos) << yaml;
@@ -140,7 +139,7 @@ TEST(CliPerturbMap, ThickenAndBlurGiveFuzzyWallsThatStillLoadAsObstacles) {
   EXPECT_EQ(out.at(60, 20), kFree);
   EXPECT_EQ(out.at(25, 45), kFree);
   // --thicken alone stays trinary.
-  ASSERT_EQ(run_pgmcl("perturb-map --map room.yaml --out thick.yaml --thicken 2", dir).code, 0);
+  ASSERT_EQ(run_pgmcl("perturb-map --map in.yaml --out thick.yaml --thicken 2", dir).code, 0);
   const OccupancyGrid thick = maps::load_map(dir.file("thick.yaml"));
   EXPECT_EQ(obstacle_run(thick, 20, 40), 5);
   EXPECT_NE(read_text(dir.file("thick.yaml")).find("image: thick.pgm"), std::string::npos);
@@ -150,31 +149,24 @@ TEST(CliPerturbMap, BadValuesAndOverwritingTheInputAreRefused) {
   TempDir dir("cli_perturb_map_bad");
   maps::save_map(room_map(), dir.file("a.yaml"), "b.pgm");
   const std::string yaml = read_text(dir.file("a.yaml")), image = read_text(dir.file("b.pgm"));
-  struct Case {
-    std::string args, message;
-  };
-  const std::vector<Case> cases = {
-      {"--out x.yaml --erase 1.5,0.5", "--erase: FRACTION must be in [0, 1], got 1.5"},
-      {"--out x.yaml --erase 0.3", "--erase: expected FRACTION,BLOCK_M, got '0.3'"},
-      {"--out x.yaml --erase 0.3,0", "--erase: BLOCK_M must be > 0, got 0"},
-      {"--out x.yaml --erase 0.3,0.01", "--erase: BLOCK_M 0.01 m is less than half a cell"},
-      {"--out x.yaml --blur -1", "--blur: SIGMA_CELLS must be >= 0, got -1"},
-      {"--out x.yaml --blur inf", "--blur: expected SIGMA_CELLS, got 'inf'"},
-      {"--out x.yaml --thicken 1.5", "--thicken: CELLS must be a whole number in [0, 1000]"},
-      {"--out a.yaml --blur 1", "would overwrite the input map's YAML"},
-      {"--out ./sub/../a.yaml --thicken 1", "would overwrite the input map's YAML"},
-      {"--out b.yaml --thicken 1", "would overwrite the input map's image"},
-  };
-  for (const Case& c : cases) {
-    SCOPED_TRACE(c.args);
-    const RunResult r = run_pgmcl("perturb-map --map a.yaml " + c.args, dir);
-    EXPECT_EQ(r.code, 2);
-    EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
-    EXPECT_FALSE(std::filesystem::exists(dir.file("x.yaml")));
-  }
+  expect_usage_errors(
+      dir, "perturb-map --map a.yaml ",
+      {
+          {"--out x.yaml --erase 1.5,0.5", "--erase: FRACTION must be in [0, 1], got 1.5"},
+          {"--out x.yaml --erase 0.3", "--erase: expected FRACTION,BLOCK_M, got '0.3'"},
+          {"--out x.yaml --erase 0.3,0", "--erase: BLOCK_M must be > 0, got 0"},
+          {"--out x.yaml --erase 0.3,0.01", "--erase: BLOCK_M 0.01 m is less than half a cell"},
+          {"--out x.yaml --blur -1", "--blur: SIGMA_CELLS must be >= 0, got -1"},
+          {"--out x.yaml --blur inf", "--blur: expected SIGMA_CELLS, got 'inf'"},
+          {"--out x.yaml --thicken 1.5", "--thicken: CELLS must be a whole number in [0, 1000]"},
+          {"--out a.yaml --blur 1", "would overwrite the input map's YAML"},
+          {"--out ./sub/../a.yaml --thicken 1", "would overwrite the input map's YAML"},
+          {"--out b.yaml --thicken 1", "would overwrite the input map's image"},
+      },
+      {"x.yaml"});
   EXPECT_EQ(read_text(dir.file("a.yaml")), yaml);
   EXPECT_EQ(read_text(dir.file("b.pgm")), image);
 }
 
 }  // namespace
-}  // namespace pgmcl
+}  // namespace pgmcl::perturb_test

@@ -9,38 +9,33 @@
 #include "cli_test_util.hpp"
 #include "perturb_test_util.hpp"
 
-namespace pgmcl {
+namespace pgmcl::perturb_test {
 namespace {
 
-using cli_test::run_pgmcl;
-using cli_test::RunResult;
-using cli_test::TempDir;
-using perturb_test::kDeg;
-using perturb_test::odometry_increments;
-using perturb_test::Output;
-using perturb_test::read_output;
-using perturb_test::write_log;
-using perturb_test::zigzag;
+struct PerturbRun {
+  RunResult result;
+  Output out;
+};
 
-/// Runs perturb on in.log with `extra` options; asserts success.
-Output perturb(const TempDir& dir, const std::string& noise, const std::string& extra,
-               RunResult* result = nullptr) {
-  const RunResult r = run_pgmcl("perturb --log in.log --odom-noise " + noise +
-                                    " --seed 9 --out raw.log --truth-out truth.tum " + extra,
-                                dir);
-  EXPECT_EQ(r.code, 0) << r.err;
-  if (result != nullptr) *result = r;
-  return read_output(dir);
+/// Runs perturb on in.log with `extra` options; expects success.
+PerturbRun perturb(const TempDir& dir, const std::string& noise, const std::string& extra) {
+  PerturbRun run;
+  run.result = run_pgmcl("perturb --log in.log --odom-noise " + noise +
+                             " --seed 9 --out raw.log --truth-out truth.tum " + extra,
+                         dir);
+  EXPECT_EQ(run.result.code, 0) << run.result.err;
+  run.out = read_output(dir);
+  return run;
 }
 
 TEST(CliPerturbGlitch, EveryStepGetsABoundedHeadingErrorAtItsStart) {
   TempDir dir("cli_perturb_glitch");
   const auto poses = zigzag(60, 0.3, 0.4, -0.5);
   write_log(dir, poses);
-  RunResult r;
-  const Output o = perturb(dir, "0,0,0,0", "--glitch 1,30", &r);
-  EXPECT_NE(r.out.find("59 heading and 0 translation glitch(es)"), std::string::npos) << r.out;
-  const std::vector<Pose2> inc = odometry_increments(o);
+  const PerturbRun run = perturb(dir, "0,0,0,0", "--glitch 1,30");
+  EXPECT_NE(run.result.out.find("59 heading and 0 translation glitch(es)"), std::string::npos)
+      << run.result.out;
+  const std::vector<Pose2> inc = odometry_increments(run.out);
   ASSERT_EQ(inc.size(), poses.size() - 1);
   int negative = 0;
   for (std::size_t i = 0; i < inc.size(); ++i) {
@@ -62,12 +57,12 @@ TEST(CliPerturbGlitch, ZeroRateReproducesTheCaseWithoutGlitches) {
   TempDir dir("cli_perturb_glitch_zero");
   write_log(dir, zigzag(80, 0.1, 0.5, 0.05));
   const std::string noise = "0.01,0.001,0.01,0.001";
-  const Output plain = perturb(dir, noise, "");
+  const Output plain = perturb(dir, noise, "").out;
   const std::string truth = cli_test::read_text(dir.file("truth.tum"));
   for (const std::string extra :
        {"--glitch 0,30", "--translation-glitch 0,1", "--glitch 0,5 --translation-glitch 0,0.2"}) {
     SCOPED_TRACE(extra);
-    const Output o = perturb(dir, noise, extra);
+    const Output o = perturb(dir, noise, extra).out;
     ASSERT_EQ(o.raw.odometry.size(), plain.raw.odometry.size());
     for (std::size_t i = 0; i < o.raw.odometry.size(); ++i) {
       EXPECT_EQ(o.raw.odometry[i].pose.x, plain.raw.odometry[i].pose.x) << i;
@@ -83,9 +78,8 @@ TEST(CliPerturbGlitch, TranslationGlitchAddsAJumpOfFixedLength) {
   TempDir dir("cli_perturb_slip");
   const auto poses = zigzag(201, 0.2, 0.3, -0.1);
   write_log(dir, poses);
-  RunResult r;
-  const Output o = perturb(dir, "0,0,0,0", "--translation-glitch 0.5,0.25", &r);
-  const std::vector<Pose2> inc = odometry_increments(o);
+  const PerturbRun run = perturb(dir, "0,0,0,0", "--translation-glitch 0.5,0.25");
+  const std::vector<Pose2> inc = odometry_increments(run.out);
   ASSERT_EQ(inc.size(), 200u);
   int jumps = 0, left = 0;
   for (std::size_t i = 0; i < inc.size(); ++i) {
@@ -101,9 +95,10 @@ TEST(CliPerturbGlitch, TranslationGlitchAddsAJumpOfFixedLength) {
   // 200 steps at rate 0.5: 100 +- 4 sigma (sigma ~7); random directions, both sides.
   EXPECT_NEAR(jumps, 100, 28);
   EXPECT_NEAR(left, jumps / 2, 4 * std::sqrt(jumps / 4.0) + 1);
-  EXPECT_NE(r.out.find("0 heading and " + std::to_string(jumps) + " translation glitch(es)"),
-            std::string::npos)
-      << r.out;
+  EXPECT_NE(
+      run.result.out.find("0 heading and " + std::to_string(jumps) + " translation glitch(es)"),
+      std::string::npos)
+      << run.result.out;
 }
 
 /// RMS per-step heading error of the odometry against the truth increments.
@@ -125,14 +120,14 @@ TEST(CliPerturbModel, TextbookModelGlitchesOnShortBackwardMovesAndPgmclDoesNot) 
   const std::string noise = "0.005,0.0005,0.005,0.0005";
   const auto back = zigzag(401, std::numbers::pi, 0.03, -std::numbers::pi);
   write_log(dir, back);
-  const double textbook = heading_rms(perturb(dir, noise, "--odom-model textbook"), back);
-  const double pgmcl = heading_rms(perturb(dir, noise, "--odom-model pgmcl"), back);
+  const double textbook = heading_rms(perturb(dir, noise, "--odom-model textbook").out, back);
+  const double pgmcl = heading_rms(perturb(dir, noise, "--odom-model pgmcl").out, back);
   // Expected: sqrt(2 a1) pi = 18 deg for the textbook model, sqrt(a2) * 3 cm = 0.04 deg.
   EXPECT_GT(textbook, 14.0 * kDeg);
   EXPECT_LT(textbook, 22.0 * kDeg);
   EXPECT_LT(pgmcl, 0.5 * kDeg);
   // Zero noise: the textbook decomposition still reproduces the backward moves exactly.
-  const Output exact = perturb(dir, "0,0,0,0", "--odom-model textbook");
+  const Output exact = perturb(dir, "0,0,0,0", "--odom-model textbook").out;
   const std::vector<Pose2> inc = odometry_increments(exact);
   for (std::size_t i = 0; i < inc.size(); ++i) {
     const Pose2 t = back[i].between(back[i + 1]);
@@ -148,10 +143,11 @@ TEST(CliPerturbModel, ModelsAgreeOnForwardSteps) {
   const std::string noise = "0.005,0.0005,0.005,0.0005";
   const auto fwd = zigzag(1001, 0.2, 0.5, -0.1);
   write_log(dir, fwd, 1);
-  const double textbook = heading_rms(perturb(dir, noise, "--odom-model textbook --quiet"), fwd);
-  const double pgmcl = heading_rms(perturb(dir, noise, "--quiet"), fwd);
+  const double textbook =
+      heading_rms(perturb(dir, noise, "--odom-model textbook --quiet").out, fwd);
+  const double pgmcl = heading_rms(perturb(dir, noise, "--quiet").out, fwd);
   EXPECT_NEAR(textbook / pgmcl, 1.0, 0.15);
 }
 
 }  // namespace
-}  // namespace pgmcl
+}  // namespace pgmcl::perturb_test

@@ -8,15 +8,8 @@
 #include "cli_test_util.hpp"
 #include "perturb_test_util.hpp"
 
-namespace pgmcl {
+namespace pgmcl::perturb_test {
 namespace {
-
-using cli_test::read_text;
-using cli_test::run_pgmcl;
-using cli_test::RunResult;
-using cli_test::TempDir;
-using perturb_test::write_log;
-using perturb_test::zigzag;
 
 const std::string kBase = "perturb --log in.log --odom-noise 0.01,0.001,0.01,0.001 --seed 5 ";
 
@@ -71,42 +64,35 @@ TEST(CliPerturbOptions, HeaderRecordsEveryConditionGiven) {
 TEST(CliPerturbOptions, BadValuesNameTheOptionAndValueAndWriteNothing) {
   TempDir dir("cli_perturb_bad_values");
   write_log(dir, zigzag(10, 0.1, 0.5, 0.0));
-  struct Case {
-    std::string args, message;
-  };
-  const std::vector<Case> cases = {
-      {"--glitch 1.5,30", "--glitch: RATE must be in [0, 1], got 1.5"},
-      {"--glitch -0.1,30", "--glitch: RATE must be in [0, 1], got -0.1"},
-      {"--glitch 0.1,0", "--glitch: DEG must be in (0, 180], got 0"},
-      {"--glitch 0.1,181", "--glitch: DEG must be in (0, 180], got 181"},
-      {"--glitch 0.1", "--glitch: expected RATE,DEG, got '0.1'"},
-      {"--glitch 0.1,nan", "--glitch: expected RATE,DEG, got '0.1,nan'"},
-      {"--translation-glitch 0.1,-2", "--translation-glitch: M must be >= 0, got -2"},
-      {"--translation-glitch 2,1", "--translation-glitch: RATE must be in [0, 1], got 2"},
-      {"--min-scan-gap -1", "--min-scan-gap: S must be >= 0, got -1"},
-      {"--min-scan-gap inf", "--min-scan-gap: expected S, got 'inf'"},
-      {"--min-scan-travel -0.5", "--min-scan-travel: M must be >= 0, got -0.5"},
-      {"--min-scan-travel 0.5,-3", "--min-scan-travel: DEG must be >= 0, got -3"},
-      {"--min-scan-travel 0.5,3,4", "--min-scan-travel: expected M[,DEG], got '0.5,3,4'"},
-      {"--beam-dropout 1", "--beam-dropout: FRACTION must be in [0, 1), got 1"},
-      {"--beam-dropout 0.2,0", "--beam-dropout: SECTORS must be a whole number >= 1, got 0"},
-      {"--beam-dropout 0.2,1.5", "--beam-dropout: SECTORS must be a whole number >= 1, got 1.5"},
-      {"--beam-dropout 0.2,", "--beam-dropout: expected FRACTION[,SECTORS], got '0.2,'"},
-      {"--laser-offset abc", "--laser-offset: expected X, got 'abc'"},
-      {"--odom-model book", "--odom-model: expected pgmcl or textbook, got 'book'"},
-      {"--scale-bias -1", "--scale-bias: F must be > -1, got -1"},
-      {"--bias-scale -1.5", "--bias-scale: F must be > -1, got -1.5"},
-      {"--yaw-drift nan", "--yaw-drift: expected DEG_PER_M, got 'nan'"},
-  };
-  for (const Case& c : cases) {
-    SCOPED_TRACE(c.args);
-    const RunResult r = run_pgmcl(kBase + c.args + " --out raw.log --truth-out t.tum", dir);
-    EXPECT_EQ(r.code, 2);
-    EXPECT_NE(r.err.find("pgmcl: error: " + c.message), std::string::npos) << r.err;
-    EXPECT_FALSE(std::filesystem::exists(dir.file("raw.log")));
-    EXPECT_FALSE(std::filesystem::exists(dir.file("t.tum")));
-  }
+  expect_usage_errors(
+      dir, kBase + "--out raw.log --truth-out t.tum ",
+      {
+          {"--glitch 1.5,30", "--glitch: RATE must be in [0, 1], got 1.5"},
+          {"--glitch -0.1,30", "--glitch: RATE must be in [0, 1], got -0.1"},
+          {"--glitch 0.1,0", "--glitch: DEG must be in (0, 180], got 0"},
+          {"--glitch 0.1,181", "--glitch: DEG must be in (0, 180], got 181"},
+          {"--glitch 0.1", "--glitch: expected RATE,DEG, got '0.1'"},
+          {"--glitch 0.1,nan", "--glitch: expected RATE,DEG, got '0.1,nan'"},
+          {"--translation-glitch 0.1,-2", "--translation-glitch: M must be >= 0, got -2"},
+          {"--translation-glitch 2,1", "--translation-glitch: RATE must be in [0, 1], got 2"},
+          {"--min-scan-gap -1", "--min-scan-gap: S must be >= 0, got -1"},
+          {"--min-scan-gap inf", "--min-scan-gap: expected S, got 'inf'"},
+          {"--min-scan-travel -0.5", "--min-scan-travel: M must be >= 0, got -0.5"},
+          {"--min-scan-travel 0.5,-3", "--min-scan-travel: DEG must be >= 0, got -3"},
+          {"--min-scan-travel 0.5,3,4", "--min-scan-travel: expected M[,DEG], got '0.5,3,4'"},
+          {"--beam-dropout 1", "--beam-dropout: FRACTION must be in [0, 1), got 1"},
+          {"--beam-dropout 0.2,0", "--beam-dropout: SECTORS must be a whole number >= 1, got 0"},
+          {"--beam-dropout 0.2,1.5",
+           "--beam-dropout: SECTORS must be a whole number >= 1, got 1.5"},
+          {"--beam-dropout 0.2,", "--beam-dropout: expected FRACTION[,SECTORS], got '0.2,'"},
+          {"--laser-offset abc", "--laser-offset: expected X, got 'abc'"},
+          {"--odom-model book", "--odom-model: expected pgmcl or textbook, got 'book'"},
+          {"--scale-bias -1", "--scale-bias: F must be > -1, got -1"},
+          {"--bias-scale -1.5", "--bias-scale: F must be > -1, got -1.5"},
+          {"--yaw-drift nan", "--yaw-drift: expected DEG_PER_M, got 'nan'"},
+      },
+      {"raw.log", "t.tum"});
 }
 
 }  // namespace
-}  // namespace pgmcl
+}  // namespace pgmcl::perturb_test

@@ -11,17 +11,8 @@
 #include "cli_test_util.hpp"
 #include "perturb_test_util.hpp"
 
-namespace pgmcl {
+namespace pgmcl::perturb_test {
 namespace {
-
-using cli_test::run_pgmcl;
-using cli_test::RunResult;
-using cli_test::TempDir;
-using perturb_test::kDeg;
-using perturb_test::Output;
-using perturb_test::read_output;
-using perturb_test::write_log;
-using perturb_test::zigzag;
 
 RunResult perturb(const TempDir& dir, const std::string& noise, const std::string& extra) {
   return run_pgmcl("perturb --log in.log --odom-noise " + noise +
@@ -214,4 +205,4 @@ TEST(CliPerturbDropout, BlanksTheFractionInAtMostSectorsRuns) {
 }
 
 }  // namespace
-}  // namespace pgmcl
+}  // namespace pgmcl::perturb_test

@@ -13,17 +13,8 @@
 #include "pgmcl/io/tum.hpp"
 #include "pgmcl/mcl/motion_model.hpp"
 
-namespace pgmcl {
+namespace pgmcl::perturb_test {
 namespace {
-
-using cli_test::run_pgmcl;
-using cli_test::RunResult;
-using cli_test::TempDir;
-
-using perturb_test::Output;
-using perturb_test::read_output;
-using perturb_test::write_log;
-using perturb_test::zigzag;
 
 TEST(CliPerturb, ZeroNoiseReproducesTruthIncrements) {
   TempDir dir("cli_perturb_zero");
@@ -141,4 +132,4 @@ TEST(CliPerturb, BadArgumentsAreUsageErrors) {
 }
 
 }  // namespace
-}  // namespace pgmcl
+}  // namespace pgmcl::perturb_test

@@ -1,7 +1,10 @@
 #pragma once
 // Helpers for the `pgmcl perturb` tests: synthetic corrected logs and reading the outputs.
 
+#include <gtest/gtest.h>
+
 #include <cmath>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -12,6 +15,11 @@
 #include "pgmcl/maps/se2.hpp"
 
 namespace pgmcl::perturb_test {
+
+using cli_test::read_text;
+using cli_test::run_pgmcl;
+using cli_test::RunResult;
+using cli_test::TempDir;
 
 /// A zig-zag path of `n` poses made of identical increments (rot1, trans, rot2), so the
 /// noise model's variances are the same for every step.
@@ -51,5 +59,28 @@ inline std::vector<Pose2> odometry_increments(const Output& o) {
 }
 
 inline constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+/// A command line that must be refused.
+struct UsageCase {
+  std::string args;     ///< appended to the command
+  std::string message;  ///< expected in the "pgmcl: error: ..." line
+};
+
+/// Runs `command + c.args` in `dir` for each case: exit code 2, c.message on stderr, and
+/// none of `never_written` (file names in `dir`) created.
+inline void expect_usage_errors(const TempDir& dir, const std::string& command,
+                                const std::vector<UsageCase>& cases,
+                                const std::vector<std::string>& never_written) {
+  for (const UsageCase& c : cases) {
+    SCOPED_TRACE(c.args);
+    const RunResult r = run_pgmcl(command + c.args, dir);
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find("pgmcl: error: "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+    for (const std::string& f : never_written) {
+      EXPECT_FALSE(std::filesystem::exists(dir.file(f))) << f;
+    }
+  }
+}
 
 }  // namespace pgmcl::perturb_test

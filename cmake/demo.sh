@@ -16,7 +16,7 @@ mkdir -p "$out/intel"
 echo "== Intel Research Lab (real scans, corrected poses as truth, realistic noisy odometry)"
 $pgmcl map --log data/logs/intel-corrected.log.gz --resolution 0.05 --out "$out/intel/map.yaml"
 $pgmcl perturb --log data/logs/intel-corrected.log.gz --odom-noise 0.005,0.0005,0.005,0.0005 \
-  --seed 1 --out "$out/intel/raw.log.gz" --truth "$out/intel/truth.tum"
+  --seed 1 --out "$out/intel/raw.log.gz" --truth-out "$out/intel/truth.tum"
 $pgmcl run configs/experiments/intel-demo.yaml --out "$out/intel/tracking"
 
 echo "== Simulated UTM-30LX scene (the paper's sensor, 1081 beams)"

@@ -42,12 +42,12 @@ corrected_case() {  # name log
   mkdir -p "$out/$name"
   "$pgmcl" map --log "$log" --resolution 0.05 --out "$out/$name/map.yaml"
   "$pgmcl" perturb --log "$log" --odom-noise $realistic --seed 1 \
-    --out "$out/$name/realistic.log.gz" --truth "$out/$name/truth.tum"
+    --out "$out/$name/realistic.log.gz" --truth-out "$out/$name/truth.tum"
   "$pgmcl" perturb --log "$log" --odom-noise $harsh --seed 1 \
-    --out "$out/$name/harsh.log.gz" --truth "$out/$name/truth.tum"
+    --out "$out/$name/harsh.log.gz" --truth-out "$out/$name/truth.tum"
   "$pgmcl" perturb --log "$log" --odom-noise $realistic --seed 1 \
-    --bias-scale 0.015 --bias-yaw-deg-per-m 0.4 \
-    --out "$out/$name/biased.log.gz" --truth "$out/$name/truth.tum"
+    --scale-bias 0.015 --yaw-drift 0.4 \
+    --out "$out/$name/biased.log.gz" --truth-out "$out/$name/truth.tum"
 }
 
 corrected_case intel intel-corrected.log.gz

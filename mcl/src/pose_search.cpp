@@ -1,0 +1,382 @@
+#include "pgmcl/mcl/pose_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace pgmcl {
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+// Per-cell q that any beam direction can at best read: the table itself for the
+// isotropic kind, the minimum over the direction planes for the oriented kind, and the
+// offset field's q at its smallest Mahalanobis distance for the offset kind.
+std::vector<std::uint8_t> best_case_table(const maps::LikelihoodField& f) {
+  const std::size_t n = static_cast<std::size_t>(f.width()) * static_cast<std::size_t>(f.height());
+  std::vector<std::uint8_t> q(n);
+  switch (f.kind()) {
+    case maps::TableKind::kIsotropic: {
+      const maps::IsotropicView v = f.isotropic();
+      std::copy_n(v.q, n, q.begin());
+      break;
+    }
+    case maps::TableKind::kOrientedBins: {
+      const maps::OrientedView v = f.oriented();
+      std::copy_n(v.q, n, q.begin());
+      for (int b = 1; b < v.bins; ++b)
+        for (std::size_t i = 0; i < n; ++i)
+          q[i] = std::min(q[i], v.q[static_cast<std::size_t>(b) * v.plane_stride + i]);
+      break;
+    }
+    case maps::TableKind::kOffsetField: {
+      const maps::OffsetView v = f.offset();
+      const float inv_var = std::max(v.inv_var_along, v.inv_var_across);
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::int8_t dc = v.off[2 * i];
+        if (dc == maps::OffsetView::kNoObstacle) {
+          q[i] = v.background;
+          continue;
+        }
+        const auto dx = static_cast<float>(dc), dy = static_cast<float>(v.off[2 * i + 1]);
+        // The endpoint may sit anywhere in its cell: half a cell closer along each axis.
+        const float ax = std::max(0.0f, std::abs(dx) - 0.5f), ay = std::max(0.0f, std::abs(dy) - 0.5f);
+        const float idx = (ax * ax + ay * ay) * std::min(v.inv_var_along, inv_var) *
+                          v.lut_steps_per_unit;
+        q[i] = idx < static_cast<float>(v.lut_size - 1) ? v.lut[static_cast<int>(idx)]
+                                                         : v.lut[v.lut_size - 1];
+      }
+      break;
+    }
+  }
+  return q;
+}
+
+// Minimum over the fine cells [C * s, C * s + 2 s) of one axis, for C in [-1, ceil(n / s)),
+// stored at C + 1; empty windows read `background`.
+template <class Get, class Put>
+void pool_axis(int n, int s, std::uint8_t background, Get get, Put put) {
+  const int coarse = (n + s - 1) / s;
+  for (int c = -1; c < coarse; ++c) {
+    std::uint8_t m = background;
+    const int lo = std::max(0, c * s), hi = std::min(n, c * s + 2 * s);
+    for (int i = lo; i < hi; ++i) m = std::min(m, get(i));
+    put(c + 1, m);
+  }
+}
+
+}  // namespace
+
+PoseSearch::PoseSearch(const maps::LikelihoodField& field, std::span<const std::uint32_t> free_cells,
+                       const PoseSearchConfig& cfg)
+    : resolution_(field.resolution()),
+      width_(field.width()),
+      height_(field.height()),
+      nats_per_step_(field.stats().nats_per_step),
+      cfg_(cfg) {
+  if (!(std::isfinite(cfg.leaf_size) && cfg.leaf_size > 0.0) || cfg.root_levels < 1 ||
+      cfg.max_beams == 0 || !(cfg.min_angle_step > 0.0) || !(cfg.max_angle_step >= cfg.min_angle_step))
+    throw std::invalid_argument("PoseSearch: invalid PoseSearchConfig");
+  switch (field.kind()) {
+    case maps::TableKind::kIsotropic: background_ = field.isotropic().background; break;
+    case maps::TableKind::kOrientedBins: background_ = field.oriented().background; break;
+    case maps::TableKind::kOffsetField: background_ = field.offset().background; break;
+  }
+
+  leaf_level_ = std::max(1, static_cast<int>(std::lround(std::log2(cfg.leaf_size / resolution_))));
+  leaf_level_ = std::min(leaf_level_, 20);
+  leaf_cells_ = 1 << leaf_level_;
+  int root_level = leaf_level_ + cfg.root_levels;
+  while (root_level > leaf_level_ + 1 && (1 << (root_level - 1)) >= std::max(width_, height_))
+    --root_level;
+
+  // Leaf level straight from the fine table, separably; higher levels from the one below.
+  const std::vector<std::uint8_t> fine = best_case_table(field);
+  {
+    Level lv;
+    lv.shift = leaf_level_;
+    const int s = 1 << lv.shift;
+    lv.width = (width_ + s - 1) / s + 1;
+    lv.height = (height_ + s - 1) / s + 1;
+    std::vector<std::uint8_t> rows(static_cast<std::size_t>(lv.width) * static_cast<std::size_t>(height_));
+    for (int r = 0; r < height_; ++r) {
+      const std::uint8_t* src = fine.data() + static_cast<std::size_t>(r) * static_cast<std::size_t>(width_);
+      std::uint8_t* dst = rows.data() + static_cast<std::size_t>(r) * static_cast<std::size_t>(lv.width);
+      pool_axis(width_, s, background_, [&](int i) { return src[i]; },
+                [&](int i, std::uint8_t v) { dst[i] = v; });
+    }
+    lv.cost.assign(static_cast<std::size_t>(lv.width) * static_cast<std::size_t>(lv.height), background_);
+    for (int c = 0; c < lv.width; ++c) {
+      pool_axis(height_, s, background_,
+                [&](int i) { return rows[static_cast<std::size_t>(i) * static_cast<std::size_t>(lv.width) + static_cast<std::size_t>(c)]; },
+                [&](int i, std::uint8_t v) { lv.cost[static_cast<std::size_t>(i) * static_cast<std::size_t>(lv.width) + static_cast<std::size_t>(c)] = v; });
+    }
+    lv.free_width = (width_ + s - 1) / s;
+    lv.free_height = (height_ + s - 1) / s;
+    lv.has_free.assign(static_cast<std::size_t>(lv.free_width) * static_cast<std::size_t>(lv.free_height), 0);
+    const auto w = static_cast<std::uint32_t>(width_);
+    for (const std::uint32_t cell : free_cells) {
+      const auto col = static_cast<int>(cell % w), row = static_cast<int>(cell / w);
+      if (row >= height_) throw std::invalid_argument("PoseSearch: free cell outside the grid");
+      lv.has_free[static_cast<std::size_t>(row >> lv.shift) * static_cast<std::size_t>(lv.free_width) +
+                  static_cast<std::size_t>(col >> lv.shift)] = 1;
+    }
+    levels_.push_back(std::move(lv));
+  }
+  for (int k = leaf_level_ + 1; k <= root_level; ++k) {
+    const Level& prev = levels_.back();
+    Level lv;
+    lv.shift = k;
+    const int s = 1 << k;
+    lv.width = (width_ + s - 1) / s + 1;
+    lv.height = (height_ + s - 1) / s + 1;
+    lv.cost.assign(static_cast<std::size_t>(lv.width) * static_cast<std::size_t>(lv.height), background_);
+    auto get = [&](int c, int r) -> std::uint8_t {  // prev level at coarse (c, r), stored at +1
+      if (c + 1 < 0 || c + 1 >= prev.width || r + 1 < 0 || r + 1 >= prev.height) return background_;
+      return prev.cost[static_cast<std::size_t>(r + 1) * static_cast<std::size_t>(prev.width) +
+                       static_cast<std::size_t>(c + 1)];
+    };
+    for (int r = -1; r + 1 < lv.height; ++r)
+      for (int c = -1; c + 1 < lv.width; ++c) {
+        const std::uint8_t m = std::min({get(2 * c, 2 * r), get(2 * c + 2, 2 * r),
+                                         get(2 * c, 2 * r + 2), get(2 * c + 2, 2 * r + 2)});
+        lv.cost[static_cast<std::size_t>(r + 1) * static_cast<std::size_t>(lv.width) +
+                static_cast<std::size_t>(c + 1)] = m;
+      }
+    lv.free_width = (width_ + s - 1) / s;
+    lv.free_height = (height_ + s - 1) / s;
+    lv.has_free.assign(static_cast<std::size_t>(lv.free_width) * static_cast<std::size_t>(lv.free_height), 0);
+    for (int r = 0; r < prev.free_height; ++r)
+      for (int c = 0; c < prev.free_width; ++c)
+        if (prev.has_free[static_cast<std::size_t>(r) * static_cast<std::size_t>(prev.free_width) +
+                          static_cast<std::size_t>(c)] != 0)
+          lv.has_free[static_cast<std::size_t>(r >> 1) * static_cast<std::size_t>(lv.free_width) +
+                      static_cast<std::size_t>(c >> 1)] = 1;
+    levels_.push_back(std::move(lv));
+  }
+  const Level& root = levels_.back();
+  for (int r = 0; r < root.free_height; ++r)
+    for (int c = 0; c < root.free_width; ++c)
+      if (root.has_free[static_cast<std::size_t>(r) * static_cast<std::size_t>(root.free_width) +
+                        static_cast<std::size_t>(c)] != 0)
+        root_cells_.push_back(static_cast<std::uint32_t>(r * root.free_width + c));
+}
+
+std::size_t PoseSearch::bytes() const noexcept {
+  std::size_t b = 0;
+  for (const Level& lv : levels_) b += lv.cost.size() + lv.has_free.size();
+  return b + root_cells_.size() * sizeof(std::uint32_t);
+}
+
+bool PoseSearch::set_scan(const PreparedBeams& beams) {
+  const std::size_t m = beams.size();
+  const std::size_t k = std::min(m, cfg_.max_beams);
+  bx_.resize(k);
+  by_.resize(k);
+  std::vector<float> ranges(k);
+  for (std::size_t j = 0; j < k; ++j) {
+    const std::size_t i = (j * m) / k;  // evenly spread over the selection
+    bx_[j] = beams.ex[i];
+    by_[j] = beams.ey[i];
+    ranges[j] = std::hypot(bx_[j], by_[j]);
+  }
+  if (k == 0) return false;
+  // An endpoint at range r moves r * step between neighbouring headings: keep that within
+  // a leaf for 90 % of the beams.
+  std::nth_element(ranges.begin(), ranges.begin() + static_cast<std::ptrdiff_t>((9 * k) / 10),
+                   ranges.end());
+  const double r90 = std::max(1.0, static_cast<double>(ranges[(9 * k) / 10]));
+  angle_step_ = std::clamp(static_cast<double>(leaf_cells_) / r90, cfg_.min_angle_step,
+                           cfg_.max_angle_step);
+  return true;
+}
+
+std::uint64_t PoseSearch::root_cost() const noexcept {
+  if (bx_.empty()) return 0;
+  const auto n = static_cast<std::uint64_t>(std::max(8.0, std::ceil(kTwoPi / angle_step_)));
+  return n * bx_.size();
+}
+
+void PoseSearch::prepare_angles(const PoseSearchQuery& q, int leaf) {
+  angles_.clear();
+  const double step = std::min(angle_step_ * static_cast<double>(1 << leaf), 4.0 * cfg_.max_angle_step);
+  if (q.windowed) {
+    const int a = static_cast<int>(std::ceil(std::max(0.0, q.half_theta) / step));
+    for (int i = -a; i <= a; ++i)
+      angles_.push_back(wrap_angle(q.theta + static_cast<double>(i) * step));
+  } else {
+    const int n = std::max(8, static_cast<int>(std::ceil(kTwoPi / step)));
+    for (int i = 0; i < n; ++i)
+      angles_.push_back(wrap_angle(-std::numbers::pi + kTwoPi * (static_cast<double>(i) + 0.5) / n));
+  }
+  const std::size_t m = bx_.size();
+  rx_.resize(angles_.size() * m);
+  ry_.resize(angles_.size() * m);
+  for (std::size_t a = 0; a < angles_.size(); ++a) {
+    const float c = static_cast<float>(std::cos(angles_[a]));
+    const float s = static_cast<float>(std::sin(angles_[a]));
+    for (std::size_t j = 0; j < m; ++j) {
+      rx_[a * m + j] = c * bx_[j] - s * by_[j];
+      ry_[a * m + j] = s * bx_[j] + c * by_[j];
+    }
+  }
+}
+
+std::uint32_t PoseSearch::bound(const Level& lv, std::int32_t col, std::int32_t row,
+                                std::size_t angle) const noexcept {
+  const std::size_t m = bx_.size();
+  const float* rx = rx_.data() + angle * m;
+  const float* ry = ry_.data() + angle * m;
+  const float inv = 1.0f / static_cast<float>(1 << lv.shift);
+  const auto fc = static_cast<float>(col), fr = static_cast<float>(row);
+  std::uint32_t sum = 0;
+  for (std::size_t j = 0; j < m; ++j) {
+    const int c = maps::floor_to_cell((fc + rx[j]) * inv) + 1;
+    const int r = maps::floor_to_cell((fr + ry[j]) * inv) + 1;
+    const bool inside = static_cast<unsigned>(c) < static_cast<unsigned>(lv.width) &&
+                        static_cast<unsigned>(r) < static_cast<unsigned>(lv.height);
+    sum += inside ? lv.cost[static_cast<std::size_t>(r) * static_cast<std::size_t>(lv.width) +
+                            static_cast<std::size_t>(c)]
+                  : background_;
+  }
+  return sum;
+}
+
+bool PoseSearch::has_free(const Level& lv, std::int32_t col, std::int32_t row) const noexcept {
+  const int c = col >> lv.shift, r = row >> lv.shift;
+  if (c < 0 || r < 0 || c >= lv.free_width || r >= lv.free_height) return false;
+  return lv.has_free[static_cast<std::size_t>(r) * static_cast<std::size_t>(lv.free_width) +
+                     static_cast<std::size_t>(c)] != 0;
+}
+
+std::uint32_t PoseSearch::pooled_cost(double x, double y, double theta) const {
+  if (bx_.empty()) return 0;
+  const Level& lv = levels_.front();
+  const float inv = 1.0f / static_cast<float>(leaf_cells_);
+  const double half = 0.5 * leaf_cells_;
+  const auto fc = static_cast<float>(x / resolution_ - half);
+  const auto fr = static_cast<float>(y / resolution_ - half);
+  const float c = static_cast<float>(std::cos(theta)), s = static_cast<float>(std::sin(theta));
+  std::uint32_t sum = 0;
+  for (std::size_t j = 0; j < bx_.size(); ++j) {
+    const int col = maps::floor_to_cell((fc + c * bx_[j] - s * by_[j]) * inv) + 1;
+    const int row = maps::floor_to_cell((fr + s * bx_[j] + c * by_[j]) * inv) + 1;
+    const bool inside = static_cast<unsigned>(col) < static_cast<unsigned>(lv.width) &&
+                        static_cast<unsigned>(row) < static_cast<unsigned>(lv.height);
+    sum += inside ? lv.cost[static_cast<std::size_t>(row) * static_cast<std::size_t>(lv.width) +
+                            static_cast<std::size_t>(col)]
+                  : background_;
+  }
+  return sum;
+}
+
+void PoseSearch::record(const PoseSearchQuery& q, const Node& leaf,
+                        std::vector<PoseCandidate>& out) const {
+  const double half = 0.5 * static_cast<double>(1 << levels_[leaf.level].shift);
+  PoseCandidate c{(leaf.col + half) * resolution_, (leaf.row + half) * resolution_,
+                  angles_[leaf.angle], leaf.cost};
+  // Non-maximum suppression: one candidate per place.
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    if (std::abs(out[i].x - c.x) < q.separation_xy && std::abs(out[i].y - c.y) < q.separation_xy &&
+        std::abs(wrap_angle(out[i].theta - c.theta)) < q.separation_theta) {
+      if (c.cost >= out[i].cost) return;
+      out.erase(out.begin() + static_cast<std::ptrdiff_t>(i));
+      break;
+    }
+  }
+  const auto at = std::upper_bound(out.begin(), out.end(), c, [](const PoseCandidate& a,
+                                                                 const PoseCandidate& b) {
+    return a.cost < b.cost;
+  });
+  out.insert(at, c);
+  if (out.size() > q.max_candidates) out.pop_back();
+}
+
+PoseSearchResult PoseSearch::search(const PoseSearchQuery& q) {
+  PoseSearchResult res;
+  if (bx_.empty() || q.max_candidates == 0) return res;
+  const int leaf = std::clamp(q.coarse_levels, 0, static_cast<int>(levels_.size()) - 1);
+  prepare_angles(q, leaf);
+  const std::uint64_t per_node = bx_.size();
+  const Level& root = levels_.back();
+  const int rs = 1 << root.shift;
+
+  // Translation window in fine cells (continuous), for windowed queries.
+  const double wx0 = (q.x - q.half_xy) / resolution_, wx1 = (q.x + q.half_xy) / resolution_;
+  const double wy0 = (q.y - q.half_xy) / resolution_, wy1 = (q.y + q.half_xy) / resolution_;
+  auto overlaps = [&](std::int32_t col, std::int32_t row, int side) {
+    return !q.windowed || (col + side > wx0 && col < wx1 && row + side > wy0 && row < wy1);
+  };
+
+  // Roots: every (root block, heading) with free space, best bound first.
+  stack_.clear();
+  std::vector<Node> roots;
+  auto add_root = [&](std::int32_t col, std::int32_t row) {
+    for (std::size_t a = 0; a < angles_.size(); ++a) {
+      roots.push_back({col, row, bound(root, col, row, a), static_cast<std::uint16_t>(a),
+                       static_cast<std::uint8_t>(levels_.size() - 1)});
+      res.lookups += per_node;
+    }
+  };
+  if (q.windowed) {
+    const int c0 = std::max(0, static_cast<int>(std::floor(wx0 / rs)));
+    const int c1 = std::min(root.free_width - 1, static_cast<int>(std::floor(wx1 / rs)));
+    const int r0 = std::max(0, static_cast<int>(std::floor(wy0 / rs)));
+    const int r1 = std::min(root.free_height - 1, static_cast<int>(std::floor(wy1 / rs)));
+    for (int r = r0; r <= r1; ++r)
+      for (int c = c0; c <= c1; ++c)
+        if (has_free(root, c * rs, r * rs)) add_root(c * rs, r * rs);
+  } else {
+    const std::size_t end = q.root_end == 0 ? root_cells_.size() : std::min(q.root_end, root_cells_.size());
+    for (std::size_t i = q.root_begin; i < end; ++i) {
+      const auto cell = static_cast<std::int32_t>(root_cells_[i]);
+      add_root((cell % root.free_width) * rs, (cell / root.free_width) * rs);
+    }
+  }
+  std::sort(roots.begin(), roots.end(), [](const Node& a, const Node& b) {
+    return a.cost != b.cost ? a.cost > b.cost : a.angle > b.angle;  // best last (top of stack)
+  });
+  stack_ = std::move(roots);
+
+  auto threshold = [&]() -> std::uint64_t {
+    const std::uint64_t cap = static_cast<std::uint64_t>(q.max_cost) + 1;  // prune at >= cap
+    if (res.candidates.size() < q.max_candidates) return cap;
+    return std::min<std::uint64_t>(cap, res.candidates.back().cost);
+  };
+  Node children[4];
+  while (!stack_.empty()) {
+    const Node n = stack_.back();
+    stack_.pop_back();
+    if (n.cost >= threshold()) continue;
+    if (n.level == leaf) {
+      const double half = 0.5 * static_cast<double>(1 << levels_[n.level].shift);
+      const double cx = n.col + half, cy = n.row + half;
+      if (!q.windowed || (cx >= wx0 && cx <= wx1 && cy >= wy0 && cy <= wy1)) record(q, n, res.candidates);
+      continue;
+    }
+    if (q.budget != 0 && res.lookups >= q.budget) {
+      res.truncated = true;
+      break;
+    }
+    const Level& lv = levels_[n.level - 1u];
+    const int s = 1 << lv.shift;
+    int k = 0;
+    for (int dr = 0; dr < 2; ++dr)
+      for (int dc = 0; dc < 2; ++dc) {
+        const std::int32_t col = n.col + dc * s, row = n.row + dr * s;
+        if (!has_free(lv, col, row) || !overlaps(col, row, s)) continue;
+        children[k++] = {col, row, bound(lv, col, row, n.angle), n.angle,
+                         static_cast<std::uint8_t>(n.level - 1u)};
+        res.lookups += per_node;
+      }
+    // Worst first, so the best child ends on top of the stack (insertion sort of <= 4).
+    for (int i = 1; i < k; ++i)
+      for (int j = i; j > 0 && children[j - 1].cost < children[j].cost; --j)
+        std::swap(children[j - 1], children[j]);
+    for (int i = 0; i < k; ++i) stack_.push_back(children[i]);
+  }
+  return res;
+}
+
+}  // namespace pgmcl

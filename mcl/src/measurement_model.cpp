@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <utility>
@@ -51,14 +52,15 @@ struct IsotropicKernel {
   std::size_t m;
   float inv_res;
   float reach;
+  std::uint8_t fit_q;  // q at or below this: the beam fits the map (PoseScore::fitting)
 
   template <bool kCountBackground, bool kClamp>
-  std::uint32_t score(float px, float py, float theta, std::uint32_t* background) const noexcept {
+  std::uint32_t score(float px, float py, float theta, PoseScore* counts) const noexcept {
     const maps::IsotropicView v = view;
     const Rot r = rotation_of(theta);
     alignas(16) std::int32_t cols[kChunk];
     alignas(16) std::int32_t rows[kChunk];
-    std::uint32_t sum = 0, bg = 0;
+    std::uint32_t sum = 0, bg = 0, fit = 0;
     for (std::size_t j0 = 0; j0 < m; j0 += kChunk) {
       const std::size_t len = std::min(kChunk, m - j0);
       const float* const bx = ex + j0;
@@ -77,10 +79,16 @@ struct IsotropicKernel {
                       static_cast<std::size_t>(cols[k])]
                 : v.background;
         sum += q;
-        if constexpr (kCountBackground) bg += (q == v.background) ? 1u : 0u;
+        if constexpr (kCountBackground) {
+          bg += (q == v.background) ? 1u : 0u;
+          fit += (q <= fit_q) ? 1u : 0u;
+        }
       }
     }
-    if constexpr (kCountBackground) *background = bg;
+    if constexpr (kCountBackground) {
+      counts->background = bg;
+      counts->fitting = fit;
+    }
     return sum;
   }
 };
@@ -94,9 +102,10 @@ struct OrientedKernel {
   std::size_t m;
   float inv_res;
   float reach;
+  std::uint8_t fit_q;  // q at or below this: the beam fits the map (PoseScore::fitting)
 
   template <bool kCountBackground, bool kClamp>
-  std::uint32_t score(float px, float py, float theta, std::uint32_t* background) const noexcept {
+  std::uint32_t score(float px, float py, float theta, PoseScore* counts) const noexcept {
     const maps::OrientedView v = view;
     const Rot r = rotation_of(theta);
     const int bins = v.bins;
@@ -108,7 +117,7 @@ struct OrientedKernel {
     alignas(16) std::int32_t cols[kChunk];
     alignas(16) std::int32_t rows[kChunk];
     alignas(16) std::int32_t planes[kChunk];
-    std::uint32_t sum = 0, bg = 0;
+    std::uint32_t sum = 0, bg = 0, fit = 0;
     for (std::size_t j0 = 0; j0 < m; j0 += kChunk) {
       const std::size_t len = std::min(kChunk, m - j0);
       const float* const bx = ex + j0;
@@ -133,10 +142,16 @@ struct OrientedKernel {
                       static_cast<std::size_t>(cols[k])]
                 : v.background;
         sum += q;
-        if constexpr (kCountBackground) bg += (q == v.background) ? 1u : 0u;
+        if constexpr (kCountBackground) {
+          bg += (q == v.background) ? 1u : 0u;
+          fit += (q <= fit_q) ? 1u : 0u;
+        }
       }
     }
-    if constexpr (kCountBackground) *background = bg;
+    if constexpr (kCountBackground) {
+      counts->background = bg;
+      counts->fitting = fit;
+    }
     return sum;
   }
 };
@@ -154,16 +169,17 @@ struct OffsetKernel {
   std::size_t m;
   float inv_res;
   float reach;
+  std::uint8_t fit_q;  // q at or below this: the beam fits the map (PoseScore::fitting)
 
   template <bool kCountBackground, bool kClamp>
-  std::uint32_t score(float px, float py, float theta, std::uint32_t* background) const noexcept {
+  std::uint32_t score(float px, float py, float theta, PoseScore* counts) const noexcept {
     const maps::OffsetView v = view;
     const Rot r = rotation_of(theta);
     alignas(16) float colf[kChunk], rowf[kChunk], dirx[kChunk], diry[kChunk];
     alignas(16) std::int32_t cols[kChunk], rows[kChunk], dcs[kChunk], drs[kChunk];
     alignas(16) std::int32_t lut_idx[kChunk];
     const float lut_last = static_cast<float>(v.lut_size - 1);
-    std::uint32_t sum = 0, bg = 0;
+    std::uint32_t sum = 0, bg = 0, fit = 0;
     for (std::size_t j0 = 0; j0 < m; j0 += kChunk) {
       const std::size_t len = std::min(kChunk, m - j0);
       const float* const bx = ex + j0;
@@ -206,10 +222,16 @@ struct OffsetKernel {
       for (std::size_t k = 0; k < len; ++k) {
         const std::uint8_t q = lut_idx[k] >= 0 ? v.lut[lut_idx[k]] : v.background;
         sum += q;
-        if constexpr (kCountBackground) bg += (q == v.background) ? 1u : 0u;
+        if constexpr (kCountBackground) {
+          bg += (q == v.background) ? 1u : 0u;
+          fit += (q <= fit_q) ? 1u : 0u;
+        }
       }
     }
-    if constexpr (kCountBackground) *background = bg;
+    if constexpr (kCountBackground) {
+      counts->background = bg;
+      counts->fitting = fit;
+    }
     return sum;
   }
 };
@@ -218,11 +240,11 @@ struct OffsetKernel {
 // leave the range where the clamps are inactive (needs_clamp).
 template <bool kCountBackground, class Kernel>
 std::uint32_t score_particle(const Kernel& k, float x, float y, float theta,
-                             std::uint32_t* background) noexcept {
+                             PoseScore* counts) noexcept {
   const float px = x * k.inv_res, py = y * k.inv_res;
   return needs_clamp(px, py, k.reach)
-             ? k.template score<kCountBackground, true>(px, py, theta, background)
-             : k.template score<kCountBackground, false>(px, py, theta, background);
+             ? k.template score<kCountBackground, true>(px, py, theta, counts)
+             : k.template score<kCountBackground, false>(px, py, theta, counts);
 }
 
 // The single piece of code that scores a particle range. Both the serial reference and
@@ -242,6 +264,10 @@ MeasurementModel::MeasurementModel(std::shared_ptr<const maps::LikelihoodField> 
     : field_(std::move(field)) {
   if (!field_) throw std::invalid_argument("MeasurementModel: likelihood field is null");
   inv_res_ = static_cast<float>(1.0 / field_->resolution());
+  // Below the background, so a beam off the map or beyond the kernel never counts as fitting.
+  const std::uint8_t background = field_->quantise_m2(std::numeric_limits<double>::infinity());
+  fit_q_ = std::min<std::uint8_t>(field_->quantise_m2(kFitSigmas * kFitSigmas),
+                                  background > 0 ? background - 1 : 0);
 }
 
 void MeasurementModel::prepare(const LaserScan& scan, std::span<const std::uint32_t> selected) {
@@ -288,18 +314,19 @@ namespace {
 // Builds the kernel for the field's kind and hands it to `fn`: the one dispatch per call.
 template <class Fn>
 void with_kernel(const maps::LikelihoodField& field, const PreparedBeams& b, float inv_res,
-                 Fn&& fn) {
+                 std::uint8_t fit_q, Fn&& fn) {
   switch (field.kind()) {
     case maps::TableKind::kIsotropic:
-      fn(IsotropicKernel{field.isotropic(), b.ex.data(), b.ey.data(), b.size(), inv_res, b.reach});
+      fn(IsotropicKernel{field.isotropic(), b.ex.data(), b.ey.data(), b.size(), inv_res, b.reach,
+                         fit_q});
       return;
     case maps::TableKind::kOrientedBins:
       fn(OrientedKernel{field.oriented(), b.ex.data(), b.ey.data(), b.bin.data(), b.size(), inv_res,
-                        b.reach});
+                        b.reach, fit_q});
       return;
     case maps::TableKind::kOffsetField:
       fn(OffsetKernel{field.offset(), b.ex.data(), b.ey.data(), b.ux.data(), b.uy.data(), b.size(),
-                      inv_res, b.reach});
+                      inv_res, b.reach, fit_q});
       return;
   }
 }
@@ -309,7 +336,7 @@ void with_kernel(const maps::LikelihoodField& field, const PreparedBeams& b, flo
 void MeasurementModel::score_serial(std::span<const float> x, std::span<const float> y,
                                     std::span<const float> theta,
                                     std::span<std::uint32_t> sum_q) const noexcept {
-  with_kernel(*field_, beams_, inv_res_, [&](const auto& k) {
+  with_kernel(*field_, beams_, inv_res_, fit_q_, [&](const auto& k) {
     score_range(k, x.data(), y.data(), theta.data(), 0, sum_q.size(), sum_q.data());
   });
 }
@@ -317,7 +344,7 @@ void MeasurementModel::score_serial(std::span<const float> x, std::span<const fl
 void MeasurementModel::score_parallel(std::span<const float> x, std::span<const float> y,
                                       std::span<const float> theta, std::span<std::uint32_t> sum_q,
                                       int threads) const noexcept {
-  with_kernel(*field_, beams_, inv_res_, [&](const auto& k) {
+  with_kernel(*field_, beams_, inv_res_, fit_q_, [&](const auto& k) {
     const std::size_t n = sum_q.size();
     detail::for_each_block(detail::block_count(n), threads, [&](std::size_t b) {
       const std::size_t lo = b * detail::kParticleBlock;
@@ -329,9 +356,9 @@ void MeasurementModel::score_parallel(std::span<const float> x, std::span<const 
 
 PoseScore MeasurementModel::score_pose(double x, double y, double theta) const noexcept {
   PoseScore out;
-  with_kernel(*field_, beams_, inv_res_, [&](const auto& k) {
+  with_kernel(*field_, beams_, inv_res_, fit_q_, [&](const auto& k) {
     out.sum_q = score_particle<true>(k, static_cast<float>(x), static_cast<float>(y),
-                                     static_cast<float>(theta), &out.background);
+                                     static_cast<float>(theta), &out);
   });
   return out;
 }

@@ -38,7 +38,14 @@ struct PreparedBeams {
 struct PoseScore {
   std::uint32_t sum_q = 0;       ///< sum of quantised values over the prepared beams
   std::uint32_t background = 0;  ///< beams that read the background (beyond reach / off map)
+  /// Beams whose endpoint lies within kFitSigmas effective sigmas of a mapped obstacle
+  /// (q <= the table's value at that Mahalanobis distance): readings the map explains.
+  std::uint32_t fitting = 0;
 };
+
+/// A beam "fits the map" when its endpoint is within this many effective sigmas of an
+/// obstacle: 3 sigma keeps 99 % of the readings of a correctly placed scan.
+inline constexpr double kFitSigmas = 3.0;
 
 /// Bound to one table; cheap to copy (shares the table). Thread-safe for concurrent const
 /// calls once prepared.
@@ -77,6 +84,7 @@ class MeasurementModel {
   std::shared_ptr<const maps::LikelihoodField> field_;
   PreparedBeams beams_;
   float inv_res_ = 1.0f;
+  std::uint8_t fit_q_ = 0;
 };
 
 }  // namespace pgmcl

@@ -41,11 +41,12 @@ std::vector<std::uint8_t> best_case_table(const maps::LikelihoodField& f) {
         }
         const auto dx = static_cast<float>(dc), dy = static_cast<float>(v.off[2 * i + 1]);
         // The endpoint may sit anywhere in its cell: half a cell closer along each axis.
-        const float ax = std::max(0.0f, std::abs(dx) - 0.5f), ay = std::max(0.0f, std::abs(dy) - 0.5f);
-        const float idx = (ax * ax + ay * ay) * std::min(v.inv_var_along, inv_var) *
-                          v.lut_steps_per_unit;
+        const float ax = std::max(0.0f, std::abs(dx) - 0.5f),
+                    ay = std::max(0.0f, std::abs(dy) - 0.5f);
+        const float idx =
+            (ax * ax + ay * ay) * std::min(v.inv_var_along, inv_var) * v.lut_steps_per_unit;
         q[i] = idx < static_cast<float>(v.lut_size - 1) ? v.lut[static_cast<int>(idx)]
-                                                         : v.lut[v.lut_size - 1];
+                                                        : v.lut[v.lut_size - 1];
       }
       break;
     }
@@ -68,20 +69,27 @@ void pool_axis(int n, int s, std::uint8_t background, Get get, Put put) {
 
 }  // namespace
 
-PoseSearch::PoseSearch(const maps::LikelihoodField& field, std::span<const std::uint32_t> free_cells,
-                       const PoseSearchConfig& cfg)
+PoseSearch::PoseSearch(const maps::LikelihoodField& field,
+                       std::span<const std::uint32_t> free_cells, const PoseSearchConfig& cfg)
     : resolution_(field.resolution()),
       width_(field.width()),
       height_(field.height()),
       nats_per_step_(field.stats().nats_per_step),
       cfg_(cfg) {
   if (!(std::isfinite(cfg.leaf_size) && cfg.leaf_size > 0.0) || cfg.root_levels < 1 ||
-      cfg.max_beams == 0 || !(cfg.min_angle_step > 0.0) || !(cfg.max_angle_step >= cfg.min_angle_step))
+      cfg.max_beams == 0 || !(cfg.min_angle_step > 0.0) ||
+      !(cfg.max_angle_step >= cfg.min_angle_step))
     throw std::invalid_argument("PoseSearch: invalid PoseSearchConfig");
   switch (field.kind()) {
-    case maps::TableKind::kIsotropic: background_ = field.isotropic().background; break;
-    case maps::TableKind::kOrientedBins: background_ = field.oriented().background; break;
-    case maps::TableKind::kOffsetField: background_ = field.offset().background; break;
+    case maps::TableKind::kIsotropic:
+      background_ = field.isotropic().background;
+      break;
+    case maps::TableKind::kOrientedBins:
+      background_ = field.oriented().background;
+      break;
+    case maps::TableKind::kOffsetField:
+      background_ = field.offset().background;
+      break;
   }
 
   leaf_level_ = std::max(1, static_cast<int>(std::lround(std::log2(cfg.leaf_size / resolution_))));
@@ -99,27 +107,41 @@ PoseSearch::PoseSearch(const maps::LikelihoodField& field, std::span<const std::
     const int s = 1 << lv.shift;
     lv.width = (width_ + s - 1) / s + 1;
     lv.height = (height_ + s - 1) / s + 1;
-    std::vector<std::uint8_t> rows(static_cast<std::size_t>(lv.width) * static_cast<std::size_t>(height_));
+    std::vector<std::uint8_t> rows(static_cast<std::size_t>(lv.width) *
+                                   static_cast<std::size_t>(height_));
     for (int r = 0; r < height_; ++r) {
-      const std::uint8_t* src = fine.data() + static_cast<std::size_t>(r) * static_cast<std::size_t>(width_);
-      std::uint8_t* dst = rows.data() + static_cast<std::size_t>(r) * static_cast<std::size_t>(lv.width);
-      pool_axis(width_, s, background_, [&](int i) { return src[i]; },
-                [&](int i, std::uint8_t v) { dst[i] = v; });
+      const std::uint8_t* src =
+          fine.data() + static_cast<std::size_t>(r) * static_cast<std::size_t>(width_);
+      std::uint8_t* dst =
+          rows.data() + static_cast<std::size_t>(r) * static_cast<std::size_t>(lv.width);
+      pool_axis(
+          width_, s, background_, [&](int i) { return src[i]; },
+          [&](int i, std::uint8_t v) { dst[i] = v; });
     }
-    lv.cost.assign(static_cast<std::size_t>(lv.width) * static_cast<std::size_t>(lv.height), background_);
+    lv.cost.assign(static_cast<std::size_t>(lv.width) * static_cast<std::size_t>(lv.height),
+                   background_);
     for (int c = 0; c < lv.width; ++c) {
-      pool_axis(height_, s, background_,
-                [&](int i) { return rows[static_cast<std::size_t>(i) * static_cast<std::size_t>(lv.width) + static_cast<std::size_t>(c)]; },
-                [&](int i, std::uint8_t v) { lv.cost[static_cast<std::size_t>(i) * static_cast<std::size_t>(lv.width) + static_cast<std::size_t>(c)] = v; });
+      pool_axis(
+          height_, s, background_,
+          [&](int i) {
+            return rows[static_cast<std::size_t>(i) * static_cast<std::size_t>(lv.width) +
+                        static_cast<std::size_t>(c)];
+          },
+          [&](int i, std::uint8_t v) {
+            lv.cost[static_cast<std::size_t>(i) * static_cast<std::size_t>(lv.width) +
+                    static_cast<std::size_t>(c)] = v;
+          });
     }
     lv.free_width = (width_ + s - 1) / s;
     lv.free_height = (height_ + s - 1) / s;
-    lv.has_free.assign(static_cast<std::size_t>(lv.free_width) * static_cast<std::size_t>(lv.free_height), 0);
+    lv.has_free.assign(
+        static_cast<std::size_t>(lv.free_width) * static_cast<std::size_t>(lv.free_height), 0);
     const auto w = static_cast<std::uint32_t>(width_);
     for (const std::uint32_t cell : free_cells) {
       const auto col = static_cast<int>(cell % w), row = static_cast<int>(cell / w);
       if (row >= height_) throw std::invalid_argument("PoseSearch: free cell outside the grid");
-      lv.has_free[static_cast<std::size_t>(row >> lv.shift) * static_cast<std::size_t>(lv.free_width) +
+      lv.has_free[static_cast<std::size_t>(row >> lv.shift) *
+                      static_cast<std::size_t>(lv.free_width) +
                   static_cast<std::size_t>(col >> lv.shift)] = 1;
     }
     levels_.push_back(std::move(lv));
@@ -131,7 +153,8 @@ PoseSearch::PoseSearch(const maps::LikelihoodField& field, std::span<const std::
     const int s = 1 << k;
     lv.width = (width_ + s - 1) / s + 1;
     lv.height = (height_ + s - 1) / s + 1;
-    lv.cost.assign(static_cast<std::size_t>(lv.width) * static_cast<std::size_t>(lv.height), background_);
+    lv.cost.assign(static_cast<std::size_t>(lv.width) * static_cast<std::size_t>(lv.height),
+                   background_);
     auto get = [&](int c, int r) -> std::uint8_t {  // prev level at coarse (c, r), stored at +1
       if (c + 1 < 0 || c + 1 >= prev.width || r + 1 < 0 || r + 1 >= prev.height) return background_;
       return prev.cost[static_cast<std::size_t>(r + 1) * static_cast<std::size_t>(prev.width) +
@@ -146,7 +169,8 @@ PoseSearch::PoseSearch(const maps::LikelihoodField& field, std::span<const std::
       }
     lv.free_width = (width_ + s - 1) / s;
     lv.free_height = (height_ + s - 1) / s;
-    lv.has_free.assign(static_cast<std::size_t>(lv.free_width) * static_cast<std::size_t>(lv.free_height), 0);
+    lv.has_free.assign(
+        static_cast<std::size_t>(lv.free_width) * static_cast<std::size_t>(lv.free_height), 0);
     for (int r = 0; r < prev.free_height; ++r)
       for (int c = 0; c < prev.free_width; ++c)
         if (prev.has_free[static_cast<std::size_t>(r) * static_cast<std::size_t>(prev.free_width) +
@@ -187,8 +211,8 @@ bool PoseSearch::set_scan(const PreparedBeams& beams) {
   std::nth_element(ranges.begin(), ranges.begin() + static_cast<std::ptrdiff_t>((9 * k) / 10),
                    ranges.end());
   const double r90 = std::max(1.0, static_cast<double>(ranges[(9 * k) / 10]));
-  angle_step_ = std::clamp(static_cast<double>(leaf_cells_) / r90, cfg_.min_angle_step,
-                           cfg_.max_angle_step);
+  angle_step_ =
+      std::clamp(static_cast<double>(leaf_cells_) / r90, cfg_.min_angle_step, cfg_.max_angle_step);
   return true;
 }
 
@@ -200,7 +224,8 @@ std::uint64_t PoseSearch::root_cost() const noexcept {
 
 void PoseSearch::prepare_angles(const PoseSearchQuery& q, int leaf) {
   angles_.clear();
-  const double step = std::min(angle_step_ * static_cast<double>(1 << leaf), 4.0 * cfg_.max_angle_step);
+  const double step =
+      std::min(angle_step_ * static_cast<double>(1 << leaf), 4.0 * cfg_.max_angle_step);
   if (q.windowed) {
     const int a = static_cast<int>(std::ceil(std::max(0.0, q.half_theta) / step));
     for (int i = -a; i <= a; ++i)
@@ -208,7 +233,8 @@ void PoseSearch::prepare_angles(const PoseSearchQuery& q, int leaf) {
   } else {
     const int n = std::max(8, static_cast<int>(std::ceil(kTwoPi / step)));
     for (int i = 0; i < n; ++i)
-      angles_.push_back(wrap_angle(-std::numbers::pi + kTwoPi * (static_cast<double>(i) + 0.5) / n));
+      angles_.push_back(
+          wrap_angle(-std::numbers::pi + kTwoPi * (static_cast<double>(i) + 0.5) / n));
   }
   const std::size_t m = bx_.size();
   rx_.resize(angles_.size() * m);
@@ -285,10 +311,9 @@ void PoseSearch::record(const PoseSearchQuery& q, const Node& leaf,
       break;
     }
   }
-  const auto at = std::upper_bound(out.begin(), out.end(), c, [](const PoseCandidate& a,
-                                                                 const PoseCandidate& b) {
-    return a.cost < b.cost;
-  });
+  const auto at = std::upper_bound(
+      out.begin(), out.end(), c,
+      [](const PoseCandidate& a, const PoseCandidate& b) { return a.cost < b.cost; });
   out.insert(at, c);
   if (out.size() > q.max_candidates) out.pop_back();
 }
@@ -328,7 +353,8 @@ PoseSearchResult PoseSearch::search(const PoseSearchQuery& q) {
       for (int c = c0; c <= c1; ++c)
         if (has_free(root, c * rs, r * rs)) add_root(c * rs, r * rs);
   } else {
-    const std::size_t end = q.root_end == 0 ? root_cells_.size() : std::min(q.root_end, root_cells_.size());
+    const std::size_t end =
+        q.root_end == 0 ? root_cells_.size() : std::min(q.root_end, root_cells_.size());
     for (std::size_t i = q.root_begin; i < end; ++i) {
       const auto cell = static_cast<std::int32_t>(root_cells_[i]);
       add_root((cell % root.free_width) * rs, (cell / root.free_width) * rs);
@@ -352,7 +378,8 @@ PoseSearchResult PoseSearch::search(const PoseSearchQuery& q) {
     if (n.level == leaf) {
       const double half = 0.5 * static_cast<double>(1 << levels_[n.level].shift);
       const double cx = n.col + half, cy = n.row + half;
-      if (!q.windowed || (cx >= wx0 && cx <= wx1 && cy >= wy0 && cy <= wy1)) record(q, n, res.candidates);
+      if (!q.windowed || (cx >= wx0 && cx <= wx1 && cy >= wy0 && cy <= wy1))
+        record(q, n, res.candidates);
       continue;
     }
     if (q.budget != 0 && res.lookups >= q.budget) {

@@ -1,5 +1,7 @@
 // PoseSearch: branch and bound against an exhaustive search over the same leaves, and the
 // true pose of a synthetic scan found among the candidates.
+#include "pgmcl/mcl/pose_search.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,7 +14,6 @@
 #include "pgmcl/mcl/beam_selection.hpp"
 #include "pgmcl/mcl/localizer.hpp"
 #include "pgmcl/mcl/measurement_model.hpp"
-#include "pgmcl/mcl/pose_search.hpp"
 #include "synthetic_world.hpp"
 
 namespace pgmcl {
@@ -60,11 +61,13 @@ TEST(PoseSearch, BranchAndBoundFindsTheExhaustiveOptimum) {
   std::uint32_t brute = std::numeric_limits<std::uint32_t>::max();
   const double leaf = search.leaf_size();
   const int n_angles = static_cast<int>(std::ceil(2.0 * std::numbers::pi / search.angle_step()));
-  const int cols = static_cast<int>(std::ceil(11.0 / leaf)), rows = static_cast<int>(std::ceil(9.0 / leaf));
+  const int cols = static_cast<int>(std::ceil(11.0 / leaf)),
+            rows = static_cast<int>(std::ceil(9.0 / leaf));
   const int per_leaf = static_cast<int>(std::lround(leaf / 0.05));
   std::vector<bool> leaf_free(static_cast<std::size_t>(cols * rows), false);
   for (std::uint32_t c : f.free_cells) {
-    const int col = static_cast<int>(c % 220) / per_leaf, row = static_cast<int>(c / 220) / per_leaf;
+    const int col = static_cast<int>(c % 220) / per_leaf,
+              row = static_cast<int>(c / 220) / per_leaf;
     leaf_free[static_cast<std::size_t>(row * cols + col)] = true;
   }
   for (int r = 0; r < rows; ++r)
@@ -93,12 +96,14 @@ TEST(PoseSearch, CandidatesAreDistinctAndSortedAndRespectTheWindow) {
   q.max_candidates = 10;
   const PoseSearchResult r = search.search(q);
   ASSERT_EQ(r.candidates.size(), 10u);
-  for (std::size_t i = 1; i < r.candidates.size(); ++i) EXPECT_LE(r.candidates[i - 1].cost, r.candidates[i].cost);
+  for (std::size_t i = 1; i < r.candidates.size(); ++i)
+    EXPECT_LE(r.candidates[i - 1].cost, r.candidates[i].cost);
   for (std::size_t i = 0; i < r.candidates.size(); ++i)
     for (std::size_t j = i + 1; j < r.candidates.size(); ++j) {
       const auto& a = r.candidates[i];
       const auto& b = r.candidates[j];
-      const bool near = std::abs(a.x - b.x) < q.separation_xy && std::abs(a.y - b.y) < q.separation_xy &&
+      const bool near = std::abs(a.x - b.x) < q.separation_xy &&
+                        std::abs(a.y - b.y) < q.separation_xy &&
                         std::abs(wrap_angle(a.theta - b.theta)) < q.separation_theta;
       EXPECT_FALSE(near) << i << " " << j;
     }

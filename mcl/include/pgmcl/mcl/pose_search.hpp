@@ -25,19 +25,19 @@
 namespace pgmcl {
 
 struct PoseSearchConfig {
-  double leaf_size = 0.2;       ///< metres: candidate spacing, rounded to 2^k cells (k >= 1)
-  int root_levels = 5;          ///< root node side = leaf * 2^root_levels
-  std::size_t max_beams = 60;   ///< beams of the scan the search scores (evenly spread)
+  double leaf_size = 0.2;          ///< metres: candidate spacing, rounded to 2^k cells (k >= 1)
+  int root_levels = 5;             ///< root node side = leaf * 2^root_levels
+  std::size_t max_beams = 60;      ///< beams of the scan the search scores (evenly spread)
   double min_angle_step = 0.0044;  ///< radians (0.25 deg)
   double max_angle_step = 0.0524;  ///< radians (3 deg)
 };
 
 /// A pose hypothesis in the map-local grid frame.
 struct PoseCandidate {
-  double x = 0.0;           ///< metres, map-local
-  double y = 0.0;           ///< metres, map-local
-  double theta = 0.0;       ///< radians
-  std::uint32_t cost = 0;   ///< pooled cost (lower is better)
+  double x = 0.0;          ///< metres, map-local
+  double y = 0.0;          ///< metres, map-local
+  double theta = 0.0;      ///< radians
+  std::uint32_t cost = 0;  ///< pooled cost (lower is better)
 };
 
 struct PoseSearchQuery {
@@ -50,10 +50,10 @@ struct PoseSearchQuery {
   std::size_t max_candidates = 32;
   /// Candidates closer than both separations to a better one are dropped (non-maximum
   /// suppression), so the list holds distinct places.
-  double separation_xy = 1.0;     ///< metres
-  double separation_theta = 0.35; ///< radians
+  double separation_xy = 1.0;           ///< metres
+  double separation_theta = 0.35;       ///< radians
   std::uint32_t max_cost = UINT32_MAX;  ///< only candidates at or below this cost
-  std::uint64_t budget = 0;  ///< beam lookups before the search stops; 0 = no limit
+  std::uint64_t budget = 0;             ///< beam lookups before the search stops; 0 = no limit
   /// Leaves this many levels above the finest (each doubles the leaf and the heading
   /// step): a coarse pass for many hypotheses, to be refined on the exact table.
   int coarse_levels = 0;
@@ -98,7 +98,7 @@ class PoseSearch {
 
  private:
   struct Level {
-    int shift = 0;  // 2^shift cells per node side
+    int shift = 0;              // 2^shift cells per node side
     int width = 0, height = 0;  // pooled dims, index C + 1 for C in [-1, ceil(W / 2^k))
     std::vector<std::uint8_t> cost;
     int free_width = 0, free_height = 0;  // aligned dims ceil(W / 2^k)
@@ -123,7 +123,7 @@ class PoseSearch {
   int leaf_cells_ = 2;
   std::uint8_t background_ = 255;
   double nats_per_step_ = 0.0;
-  std::vector<Level> levels_;  // leaf level first, root level last
+  std::vector<Level> levels_;              // leaf level first, root level last
   std::vector<std::uint32_t> root_cells_;  // root blocks with free cells, row-major
   PoseSearchConfig cfg_;
   // Scan: base-frame endpoints in cells.

@@ -1,0 +1,202 @@
+// HypothesisTracker while tracking: the prediction and its competitors, the rescue search
+// around a prediction that stopped fitting, the map sweep, and when a competitor wins.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "hypothesis_tracker.hpp"
+
+namespace pgmcl::detail {
+namespace {
+
+// Running means of the prediction's fit: over ~10 tracking updates (has the scan stopped
+// fitting?) and ~100 (how well does the map usually fit here?).
+constexpr double kFitMeanRate = 0.1;
+constexpr double kFitUsualRate = 0.01;
+// New view per update: metres travelled plus this many metres per radian turned (a turn
+// of a radian shows about as much new scene as a metre of travel).
+constexpr double kViewPerRadian = 1.0;
+// Evidence fades over this much view (metres): what a place fitted 50 m ago says little
+// about whether it fits better now.
+constexpr double kEvidenceView = 10.0;
+// A glitch candidate explains the scan about as well as the map usually does here: in
+// clutter nothing does, and a place that merely fits better is no glitch ...
+constexpr double kNormalFit = 0.9;
+// ... and this much (fraction of the probe beams) better than the prediction. A fall of
+// the prediction's fit by as much within one update is an abrupt loss.
+constexpr double kGlitchGain = 0.3;
+// Metres a heading glitch may displace the pose at least (more on longer steps): farther
+// candidates (slips) need a second scan.
+constexpr double kGlitchReach = 1.2;
+// A candidate found while the fit faded (rather than fell) must correct the heading by at
+// least this much (radians): along a corridor some shifted pose fits better wherever the
+// map is wrong.
+constexpr double kFadedHeading = 0.17;
+// A place elsewhere on the map (a kidnapping) must explain this many scans in a row.
+constexpr int kKidnapScans = 3;
+// The map sweep's budget while the prediction is lost.
+constexpr double kLostSweepBoost = 10.0;
+
+}  // namespace
+
+void HypothesisTracker::track(const Pose2& prediction, const Pose2& delta, std::size_t particles,
+                              HypothesisStep& out) {
+  const Scored ref = climb(prediction);
+  const double fit = fit_of(ref);
+  const double step = std::hypot(delta.x, delta.y);
+  const double view = step + kViewPerRadian * std::abs(delta.theta);
+  const double fade = std::exp(-view / kEvidenceView);
+  for (Competitor& c : competitors_) {
+    const Scored k = climb(c.pose.compose(delta));
+    c.pose = k.pose;
+    c.last = evidence(ref.score.sum_q, k.score.sum_q);
+    c.evidence = c.evidence * fade + c.last;
+    c.fit = fit_of(k);
+    c.view += view;
+    ++c.age;
+  }
+
+  const bool lost = have_fit_mean_ && fit < cfg_.rescue_fit_ratio * fit_mean_;
+  lost_updates_ = lost ? lost_updates_ + 1 : 0;
+  if (lost_updates_ == 1) abrupt_loss_ = last_fit_ - fit >= kGlitchGain;
+  last_fit_ = fit;
+  if (lost) {
+    rescue(ref, out);
+  } else {
+    fit_mean_ = have_fit_mean_ ? fit_mean_ + kFitMeanRate * (fit - fit_mean_) : fit;
+    fit_usual_ = have_fit_mean_ ? fit_usual_ + kFitUsualRate * (fit - fit_usual_) : fit;
+    have_fit_mean_ = true;
+  }
+  sweep(ref, particles, lost);
+  prune(ref);
+  maybe_switch(ref, fit, step, lost, particles, out);
+  out.competitors = competitors_.size();
+  // A competitor counts once it has outlasted the scan that proposed it.
+  for (const Competitor& c : competitors_)
+    if (c.age >= 1) out.alternative_evidence = std::max(out.alternative_evidence, c.evidence);
+}
+
+void HypothesisTracker::rescue(const Scored& ref, HypothesisStep& out) {
+  // Around the prediction, over a wider range of headings each update it stays lost (the
+  // odometry may keep turning a robot that stands still: Table 5.6's rot1 on jitter).
+  PoseSearchQuery q;
+  q.windowed = true;
+  q.x = ref.pose.x;
+  q.y = ref.pose.y;
+  q.theta = ref.pose.theta;
+  q.half_xy = cfg_.rescue_xy;
+  q.half_theta = std::min(std::numbers::pi, cfg_.rescue_theta * lost_updates_);
+  q.max_candidates = 3;
+  q.separation_xy = 0.5 * cfg_.separation_xy;
+  q.separation_theta = 0.5 * cfg_.separation_theta;
+  q.max_cost = search_.pooled_cost(ref.pose.x, ref.pose.y, ref.pose.theta);
+  q.budget = cfg_.rescue_budget;
+  q.coarse_levels = 1;
+  out.searched = true;
+  for (const PoseCandidate& c : search_.search(q).candidates)
+    add(refine(c), ref, Competitor::Origin::kRescue, true);
+}
+
+void HypothesisTracker::sweep(const Scored& ref, std::size_t particles, bool lost) {
+  // Root blocks in turn, within a budget of lookups per update (a share of the particles'
+  // own), for places that fit at least as well as the prediction.
+  const std::size_t roots = search_.root_count();
+  if (!(cfg_.sweep_share > 0.0) || roots == 0) return;
+  const double share = (lost && abrupt_loss_ ? kLostSweepBoost : 1.0) * cfg_.sweep_share;
+  sweep_credit_ += share * static_cast<double>(particles * beams_used_);
+  const auto per_root = static_cast<double>(search_.root_cost());
+  while (sweep_credit_ >= per_root) {
+    if (sweep_cursor_ >= roots) sweep_cursor_ = 0;
+    PoseSearchQuery q;
+    q.max_candidates = 1;
+    q.separation_xy = cfg_.separation_xy;
+    q.separation_theta = cfg_.separation_theta;
+    q.max_cost = search_.pooled_cost(ref.pose.x, ref.pose.y, ref.pose.theta);
+    q.root_begin = sweep_cursor_;
+    q.root_end = ++sweep_cursor_;
+    q.budget = static_cast<std::uint64_t>(sweep_credit_);
+    const PoseSearchResult res = search_.search(q);
+    sweep_credit_ -= static_cast<double>(res.lookups);
+    for (const PoseCandidate& c : res.candidates)
+      add(climb({c.x, c.y, c.theta}), ref, Competitor::Origin::kSweep, lost);
+  }
+}
+
+void HypothesisTracker::add(const Scored& c, const Scored& ref, Competitor::Origin origin,
+                            bool lost) {
+  // A robot stands in free space: a pose inside furniture may fit a scan perfectly.
+  if (near_prediction(c.pose, ref.pose) || !is_free(c.pose.x, c.pose.y)) return;
+  const double e = evidence(ref.score.sum_q, c.score.sum_q);
+  for (Competitor& k : competitors_) {
+    if (!same_place(k.pose, c.pose, 0.5)) continue;
+    // Already tracked: a fresh search result is the better pose for it (climb() lags
+    // behind large odometry errors); its record stays.
+    if (e > k.last) {
+      k.pose = c.pose;
+      k.evidence += e - k.last;
+      k.last = e;
+      k.fit = fit_of(c);
+    }
+    return;
+  }
+  competitors_.push_back({c.pose, e, e, fit_of(c), 0.0, 0, origin, lost && abrupt_loss_});
+}
+
+void HypothesisTracker::prune(const Scored& ref) {
+  // Strongest first; forget what fell behind, merged with the prediction or a stronger
+  // competitor, or left free space.
+  std::sort(competitors_.begin(), competitors_.end(),
+            [](const Competitor& a, const Competitor& b) { return a.evidence > b.evidence; });
+  std::vector<Competitor> kept;
+  for (const Competitor& c : competitors_) {
+    if (c.evidence < cfg_.drop_evidence || near_prediction(c.pose, ref.pose) ||
+        !is_free(c.pose.x, c.pose.y))
+      continue;
+    bool dup = false;
+    for (const Competitor& k : kept) dup = dup || same_place(k.pose, c.pose, 0.5);
+    if (!dup && kept.size() < cfg_.max_competitors) kept.push_back(c);
+  }
+  competitors_ = std::move(kept);
+}
+
+bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, double fit,
+                                   double step, bool lost) const {
+  // Every winner outweighs the prediction and gained on this scan. A place the global
+  // search proposed (as likely a priori as the one the filter settled on) needs only to
+  // stay ahead over rival_view metres of new view.
+  if (c.evidence < cfg_.switch_evidence || !(c.last > 0.0)) return false;
+  if (c.origin == Competitor::Origin::kGlobal) return c.view >= cfg_.rival_view && c.age >= 1;
+  // The others must explain the scan as the map usually does here: with some slack when
+  // they were found as the prediction's fit fell at once, fully when it faded (clutter,
+  // or a part of the map that is wrong, where some other pose fits better by chance).
+  const double usual = std::max(fit_mean_, fit_usual_);
+  if (c.fit < (c.abrupt ? kNormalFit : 1.0) * usual) return false;
+  const double moved = std::hypot(c.pose.x - ref.pose.x, c.pose.y - ref.pose.y);
+  const bool nearby = moved <= std::max(kGlitchReach, std::sin(cfg_.rescue_theta) * step);
+  if (c.age == 0)  // at once, with this very scan: a glitch-sized correction only
+    return c.origin == Competitor::Origin::kRescue && c.abrupt && lost && nearby &&
+           c.fit >= fit + kGlitchGain;
+  if (c.origin == Competitor::Origin::kSweep)  // a kidnapping: several scans, still lost
+    return c.abrupt && lost && c.age + 1 >= kKidnapScans && c.fit >= fit + kGlitchGain;
+  if (!c.abrupt && !(nearby && std::abs(wrap_angle(c.pose.theta - ref.pose.theta)) >= kFadedHeading))
+    return false;
+  return c.fit >= fit + (c.abrupt ? 0.5 : 1.0) * kGlitchGain;
+}
+
+void HypothesisTracker::maybe_switch(const Scored& ref, double fit, double step, bool lost,
+                                     std::size_t particles, HypothesisStep& out) {
+  // competitors_ is sorted by evidence: the first that may switch is the strongest.
+  const auto winner = std::find_if(competitors_.begin(), competitors_.end(),
+                                   [&](const Competitor& c) { return may_switch(c, ref, fit, step, lost); });
+  if (winner == competitors_.end()) return;
+  out.seed = {{winner->pose},
+              static_cast<std::size_t>(
+                  std::lround(cfg_.switch_seed_fraction * static_cast<double>(particles))),
+              0.5 * search_.leaf_size(), search_.angle_step()};
+  out.switched = true;
+  // The old prediction becomes a competitor, with the evidence against it.
+  *winner = {ref.pose, -winner->evidence, -winner->last, fit, 0.0, 0, Competitor::Origin::kGlobal,
+             false};
+}
+
+}  // namespace pgmcl::detail

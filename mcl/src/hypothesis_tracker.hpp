@@ -1,0 +1,135 @@
+#pragma once
+// Internal: competing hypotheses from scan-to-map search (HypothesesConfig), beside the
+// particle set. Per measurement update, after MeasurementModel::prepare():
+//  - global mode (after global_localize(), until the first convergence): a coarse global
+//    search over a slice of the map; the particle set is asked to seed its places;
+//  - tracking: the prediction (last estimate moved by odometry) and each competitor are
+//    scored on a few beams; a scan that stops fitting the prediction starts a search
+//    around it (odometry glitches, slips), and a slice of the map is searched for places
+//    that fit as well (a wrong place, a kidnapping); a competitor whose evidence passes
+//    the switch rules asks the set to seed there.
+// The tracker only proposes; the Localizer draws the particles and scores them.
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "pgmcl/maps/likelihood_field.hpp"
+#include "pgmcl/mcl/laser_scan.hpp"
+#include "pgmcl/mcl/localizer_config.hpp"
+#include "pgmcl/mcl/measurement_model.hpp"
+#include "pgmcl/mcl/pose_search.hpp"
+
+namespace pgmcl::detail {
+
+/// Particles to redraw around `poses` (map-local), an equal share each.
+struct SeedRequest {
+  std::vector<Pose2> poses;
+  std::size_t count = 0;
+  double sigma_xy = 0.0;     ///< metres
+  double sigma_theta = 0.0;  ///< radians
+};
+
+struct HypothesisStep {
+  SeedRequest seed;
+  bool searched = false;  ///< a global or rescue search ran
+  bool switched = false;  ///< the seeds are a competitor that outweighed the prediction
+  std::size_t competitors = 0;
+  double alternative_evidence = 0.0;  ///< largest competitor evidence, tempered nats (>= 0)
+};
+
+class HypothesisTracker {
+ public:
+  /// `free_cells`: linear indices into the field's grid (the Localizer's).
+  HypothesisTracker(std::shared_ptr<const maps::LikelihoodField> field,
+                    std::span<const std::uint32_t> free_cells, const HypothesesConfig& cfg,
+                    const LikelihoodConfig& likelihood);
+
+  /// Forgets everything; `global`: start in global mode (global_localize()).
+  void reset(bool global);
+  [[nodiscard]] bool global() const noexcept { return global_; }
+  /// The filter converged: leave global mode, keeping the other places of the last global
+  /// search as competitors (the filter may have settled on one that only fits almost as
+  /// well). `estimate` map-local.
+  void converged(const Pose2& estimate);
+
+  /// One update. `selected` indexes scan.ranges; `beams` is the prepared selection;
+  /// `prediction` (map-local) the last estimate moved by `delta`, the odometry increment.
+  HypothesisStep update(const LaserScan& scan, std::span<const std::uint32_t> selected,
+                        const PreparedBeams& beams, const Pose2& prediction, const Pose2& delta,
+                        std::size_t particles);
+
+  /// Map-local metres in a free cell.
+  [[nodiscard]] bool is_free(double x, double y) const noexcept;
+
+ private:
+  struct Scored {
+    Pose2 pose{};
+    PoseScore score{};
+  };
+  struct Competitor {
+    Pose2 pose{};           // map-local
+    double evidence = 0.0;  // tempered nats against the prediction, fading with view
+    double last = 0.0;      // this update's share of it
+    double fit = 0.0;       // fraction of the probe beams that fit the map there
+    double view = 0.0;      // new view since it was found (metres, kViewPerRadian)
+    int age = 0;            // updates tracked
+    // Where it came from decides what it may do (may_switch): a place the global search
+    // proposed had the prior of the one the filter settled on; one found around a
+    // prediction that stopped fitting is a glitch candidate; one the map sweep found
+    // would be a kidnapping.
+    enum class Origin : std::uint8_t { kGlobal, kRescue, kSweep } origin = Origin::kSweep;
+    bool abrupt = false;  // found while the prediction's fit had fallen at once
+  };
+
+  void global_step(std::size_t particles, HypothesisStep& out);
+  void track(const Pose2& prediction, const Pose2& delta, std::size_t particles,
+             HypothesisStep& out);
+  void rescue(const Scored& ref, HypothesisStep& out);
+  void sweep(const Scored& ref, std::size_t particles, bool lost);
+  void prune(const Scored& ref);
+  void maybe_switch(const Scored& ref, double fit, double step, bool lost, std::size_t particles,
+                    HypothesisStep& out);
+  [[nodiscard]] bool may_switch(const Competitor& c, const Scored& ref, double fit, double step,
+                                bool lost) const;
+  void add(const Scored& c, const Scored& ref, Competitor::Origin origin, bool lost);
+
+  [[nodiscard]] Scored climb(const Pose2& start) const;
+  [[nodiscard]] Scored refine(const PoseCandidate& coarse);
+  [[nodiscard]] double fit_of(const Scored& s) const noexcept;
+  [[nodiscard]] double evidence(std::uint32_t q_ref, std::uint32_t q) const noexcept;
+  [[nodiscard]] bool same_place(const Pose2& a, const Pose2& b, double scale = 1.0) const noexcept;
+  [[nodiscard]] bool near_prediction(const Pose2& a, const Pose2& ref) const noexcept;
+
+  std::shared_ptr<const maps::LikelihoodField> field_;
+  HypothesesConfig cfg_;
+  double tau_beams_ = 20.0;  // LikelihoodConfig::effective_beams (<= 0: fixed tempering_)
+  double tempering_ = 1.0;
+  PoseSearch search_;
+  MeasurementModel probe_;  // a few of the scan's beams, for scoring single hypotheses
+  std::vector<std::uint32_t> probe_beams_;
+  std::size_t beams_used_ = 0;  // beams the particles are scored on this update
+  std::vector<std::uint64_t> free_mask_;  // one bit per cell, set for free cells
+  int width_ = 0, height_ = 0;
+  double resolution_ = 0.0;
+
+  bool global_ = true;
+  std::vector<Pose2> global_places_;  // the last global search's refined candidates
+  std::size_t global_cursor_ = 0;     // next root block of the global search
+  std::size_t global_passes_ = 0;     // complete passes over the map
+  double global_root_cost_ = 0.0;     // lookups per root block of the last global search
+
+  std::vector<Competitor> competitors_;
+  bool have_fit_mean_ = false;
+  double fit_mean_ = 0.0;   // the prediction's fit, over ~10 tracking updates
+  double fit_usual_ = 0.0;  // ... and over ~100
+  double last_fit_ = 0.0;
+  int lost_updates_ = 0;      // consecutive updates the prediction lost its fit
+  bool abrupt_loss_ = false;  // ... and it fell within one update
+  std::size_t sweep_cursor_ = 0;
+  double sweep_credit_ = 0.0;  // beam lookups the sweep may still spend
+};
+
+}  // namespace pgmcl::detail

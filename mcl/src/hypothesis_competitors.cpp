@@ -159,8 +159,8 @@ void HypothesisTracker::prune(const Scored& ref) {
   competitors_ = std::move(kept);
 }
 
-bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, double fit,
-                                   double step, bool lost) const {
+bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, double fit, double step,
+                                   bool lost) const {
   // Every winner outweighs the prediction and gained on this scan. A place the global
   // search proposed (as likely a priori as the one the filter settled on) needs only to
   // stay ahead over rival_view metres of new view.
@@ -178,7 +178,8 @@ bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, doubl
            c.fit >= fit + kGlitchGain;
   if (c.origin == Competitor::Origin::kSweep)  // a kidnapping: several scans, still lost
     return c.abrupt && lost && c.age + 1 >= kKidnapScans && c.fit >= fit + kGlitchGain;
-  if (!c.abrupt && !(nearby && std::abs(wrap_angle(c.pose.theta - ref.pose.theta)) >= kFadedHeading))
+  if (!c.abrupt &&
+      !(nearby && std::abs(wrap_angle(c.pose.theta - ref.pose.theta)) >= kFadedHeading))
     return false;
   return c.fit >= fit + (c.abrupt ? 0.5 : 1.0) * kGlitchGain;
 }
@@ -186,17 +187,19 @@ bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, doubl
 void HypothesisTracker::maybe_switch(const Scored& ref, double fit, double step, bool lost,
                                      std::size_t particles, HypothesisStep& out) {
   // competitors_ is sorted by evidence: the first that may switch is the strongest.
-  const auto winner = std::find_if(competitors_.begin(), competitors_.end(),
-                                   [&](const Competitor& c) { return may_switch(c, ref, fit, step, lost); });
+  const auto winner =
+      std::find_if(competitors_.begin(), competitors_.end(),
+                   [&](const Competitor& c) { return may_switch(c, ref, fit, step, lost); });
   if (winner == competitors_.end()) return;
   out.seed = {{winner->pose},
               static_cast<std::size_t>(
                   std::lround(cfg_.switch_seed_fraction * static_cast<double>(particles))),
-              0.5 * search_.leaf_size(), search_.angle_step()};
+              0.5 * search_.leaf_size(),
+              search_.angle_step()};
   out.switched = true;
   // The old prediction becomes a competitor, with the evidence against it.
-  *winner = {ref.pose, -winner->evidence, -winner->last, fit, 0.0, 0, Competitor::Origin::kGlobal,
-             false};
+  *winner = {ref.pose, -winner->evidence,           -winner->last, fit, 0.0,
+             0,        Competitor::Origin::kGlobal, false};
 }
 
 }  // namespace pgmcl::detail

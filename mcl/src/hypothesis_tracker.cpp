@@ -56,7 +56,8 @@ void HypothesisTracker::converged(const Pose2& estimate) {
     if (competitors_.size() >= cfg_.max_competitors) break;
     bool dup = same_place(p, estimate);
     for (const Competitor& c : competitors_) dup = dup || same_place(c.pose, p);
-    if (!dup) competitors_.push_back({p, 0.0, 0.0, 0.0, 0.0, 0, Competitor::Origin::kGlobal, false});
+    if (!dup)
+      competitors_.push_back({p, 0.0, 0.0, 0.0, 0.0, 0, Competitor::Origin::kGlobal, false});
   }
 }
 
@@ -104,8 +105,8 @@ void HypothesisTracker::global_step(std::size_t particles, HypothesisStep& out) 
   q.budget = cfg_.global_budget;
   q.coarse_levels = 1;
   q.root_begin = global_cursor_;
-  q.root_end = std::min(roots, global_cursor_ + static_cast<std::size_t>(
-                                                    std::clamp(slice, 1.0, static_cast<double>(roots))));
+  q.root_end = std::min(roots, global_cursor_ + static_cast<std::size_t>(std::clamp(
+                                                    slice, 1.0, static_cast<double>(roots))));
   global_cursor_ = q.root_end;
   const PoseSearchResult res = search_.search(q);
   global_root_cost_ =
@@ -178,7 +179,8 @@ double HypothesisTracker::evidence(std::uint32_t q_ref, std::uint32_t q) const n
   // The filter's own weighting, tau * (ll - ll_ref) (LikelihoodConfig), on the probe beams.
   const auto m = static_cast<double>(probe_.beams().size());
   const double tau = tau_beams_ > 0.0 ? std::min(1.0, tau_beams_ / m) : tempering_;
-  return tau * field_->stats().nats_per_step * (static_cast<double>(q_ref) - static_cast<double>(q));
+  return tau * field_->stats().nats_per_step *
+         (static_cast<double>(q_ref) - static_cast<double>(q));
 }
 
 bool HypothesisTracker::same_place(const Pose2& a, const Pose2& b, double scale) const noexcept {

@@ -110,7 +110,7 @@ class HypothesisTracker {
   PoseSearch search_;
   MeasurementModel probe_;  // a few of the scan's beams, for scoring single hypotheses
   std::vector<std::uint32_t> probe_beams_;
-  std::size_t beams_used_ = 0;  // beams the particles are scored on this update
+  std::size_t beams_used_ = 0;            // beams the particles are scored on this update
   std::vector<std::uint64_t> free_mask_;  // one bit per cell, set for free cells
   int width_ = 0, height_ = 0;
   double resolution_ = 0.0;

@@ -2,13 +2,16 @@
 #include "pgmcl/mcl/localizer.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
+#include "hypothesis_tracker.hpp"
 #include "stream_keys.hpp"
 
 namespace pgmcl {
@@ -46,8 +49,15 @@ Localizer::Localizer(std::shared_ptr<const maps::LikelihoodField> field,
     : cfg_(cfg), field_(std::move(field)), model_(field_), free_cells_(std::move(free_cells)) {
   cfg_.validate();
   init_geometry();
+  if (cfg_.hypotheses.enabled)
+    hypotheses_ = std::make_unique<detail::HypothesisTracker>(field_, free_cells_, cfg_.hypotheses,
+                                                              cfg_.likelihood);
   global_localize();
 }
+
+Localizer::~Localizer() = default;
+Localizer::Localizer(Localizer&&) noexcept = default;
+Localizer& Localizer::operator=(Localizer&&) noexcept = default;
 
 void Localizer::init_geometry() {
   origin_ = field_->origin();
@@ -96,6 +106,7 @@ void Localizer::global_localize() {
     p_.y[i] = static_cast<float>(q.y);
     p_.theta[i] = wrap_angle(static_cast<float>(q.theta));
   }
+  if (hypotheses_) hypotheses_->reset(true);
   reset_after_init();
 }
 
@@ -130,6 +141,7 @@ void Localizer::set_pose(const Pose2& mean, const Eigen::Matrix3d& cov) {
     p_.y[i] = static_cast<float>(m.y + d.y());
     p_.theta[i] = wrap_angle(static_cast<float>(wrap_angle(m.theta + d.z())));
   }
+  if (hypotheses_) hypotheses_->reset(false);
   reset_after_init();
 }
 
@@ -142,8 +154,41 @@ void Localizer::reset_after_init() {
   r.particles = p_.size();
   r.n_eff = static_cast<double>(p_.size());
   compute_estimate(r);
+  clustered_ = r.converged;
   anchor_ = r.estimate;
   last_ = r;
+}
+
+void Localizer::seed_particles(const detail::SeedRequest& seed) {
+  // The `count` lightest particles (ties by index), an equal share around each pose, at
+  // the uniform weight, in free space only (a few tries; near a tiny free region a
+  // particle stays put).
+  const std::size_t n = p_.size();
+  const std::size_t count = std::min(seed.count, n);
+  if (count == 0 || seed.poses.empty()) return;
+  victims_.resize(n);
+  std::iota(victims_.begin(), victims_.end(), 0u);
+  std::nth_element(victims_.begin(), victims_.begin() + static_cast<std::ptrdiff_t>(count - 1),
+                   victims_.end(), [&](std::uint32_t a, std::uint32_t b) {
+                     return p_.log_w[a] != p_.log_w[b] ? p_.log_w[a] < p_.log_w[b] : a < b;
+                   });
+  Rng rng = Rng::for_block(cfg_.seed, next_step(), detail::kStreamSeed);
+  const double lw = -std::log(static_cast<double>(n));
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::uint32_t i = victims_[k];
+    const Pose2& c = seed.poses[k % seed.poses.size()];
+    for (int attempt = 0; attempt < 8; ++attempt) {
+      const double x = c.x + rng.normal(seed.sigma_xy), y = c.y + rng.normal(seed.sigma_xy);
+      const double th = wrap_angle(c.theta + rng.normal(seed.sigma_theta));
+      if (!hypotheses_->is_free(x, y)) continue;
+      p_.x[i] = static_cast<float>(x);
+      p_.y[i] = static_cast<float>(y);
+      p_.theta[i] = wrap_angle(static_cast<float>(th));
+      p_.log_w[i] = lw;
+      probation_[i] = 0;
+      break;
+    }
+  }
 }
 
 ParticlesView Localizer::particles() const noexcept {

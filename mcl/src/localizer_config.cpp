@@ -94,6 +94,34 @@ void LocalizerConfig::validate() const {
   require_positive(e.converged_xy_std, "estimate.converged_xy_std");
   require_positive(e.converged_theta_std, "estimate.converged_theta_std");
 
+  const HypothesesConfig& h = hypotheses;
+  if (h.enabled) {
+    require_positive(h.search.leaf_size, "hypotheses.search.leaf_size");
+    if (h.search.root_levels < 1 || h.search.root_levels > 12)
+      fail("hypotheses.search.root_levels", "must be in [1, 12]");
+    if (h.search.max_beams < 1) fail("hypotheses.search.max_beams", "must be >= 1");
+    require_positive(h.search.min_angle_step, "hypotheses.search.min_angle_step");
+    if (!(h.search.max_angle_step >= h.search.min_angle_step &&
+          std::isfinite(h.search.max_angle_step)))
+      fail("hypotheses.search.max_angle_step", "must be finite and >= min_angle_step");
+    if (!(h.global_seed_fraction >= 0.0 && h.global_seed_fraction <= 1.0))
+      fail("hypotheses.global_seed_fraction", "must be in [0, 1]");
+    if (!(h.switch_seed_fraction >= 0.0 && h.switch_seed_fraction <= 1.0))
+      fail("hypotheses.switch_seed_fraction", "must be in [0, 1]");
+    require_finite_nonneg(h.candidate_margin, "hypotheses.candidate_margin");
+    require_positive(h.switch_evidence, "hypotheses.switch_evidence");
+    if (!(std::isfinite(h.drop_evidence) && h.drop_evidence < 0.0))
+      fail("hypotheses.drop_evidence", "must be finite and < 0");
+    if (!(h.rescue_fit_ratio >= 0.0 && h.rescue_fit_ratio <= 1.0))
+      fail("hypotheses.rescue_fit_ratio", "must be in [0, 1]");
+    require_finite_nonneg(h.rescue_xy, "hypotheses.rescue_xy");
+    require_finite_nonneg(h.rescue_theta, "hypotheses.rescue_theta");
+    require_finite_nonneg(h.sweep_share, "hypotheses.sweep_share");
+    require_finite_nonneg(h.rival_view, "hypotheses.rival_view");
+    require_positive(h.separation_xy, "hypotheses.separation_xy");
+    require_positive(h.separation_theta, "hypotheses.separation_theta");
+  }
+
   if (threads < 0) fail("threads", "must be >= 0 (0 = OpenMP default)");
 }
 

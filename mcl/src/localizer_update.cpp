@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "hypothesis_tracker.hpp"
 #include "parallel_blocks.hpp"
 #include "pgmcl/mcl/localizer.hpp"
 #include "pgmcl/mcl/weights.hpp"
@@ -58,6 +59,8 @@ UpdateResult Localizer::update(const Pose2& odometry_pose, const LaserScan& scan
   r.skipped = SkipReason::kNone;
   r.motion_applied = r.measured = r.resampled = false;
   r.injected = 0;
+  r.seeded = 0;
+  r.switched = r.searched = false;
   r.tempering = 0.0;
   r.beams_total = scan.ranges.size();
   r.beams_invalid = r.beams_used = r.beams_background = 0;
@@ -75,8 +78,9 @@ UpdateResult Localizer::update(const Pose2& odometry_pose, const LaserScan& scan
   }
 
   // ---- Gating and motion (Probabilistic Robotics, Table 5.6). ----
+  Pose2 delta{};
   if (have_odom_) {
-    const Pose2 delta = odom_ref_.between(odometry_pose);
+    delta = odom_ref_.between(odometry_pose);
     const bool moved = std::hypot(delta.x, delta.y) >= cfg_.gating.d_min ||
                        std::abs(delta.theta) >= cfg_.gating.theta_min;
     if (cfg_.gating.enabled && !moved && !force_) {
@@ -96,7 +100,7 @@ UpdateResult Localizer::update(const Pose2& odometry_pose, const LaserScan& scan
 
   // ---- Measurement (Dekan et al., Eq. (6), tempered) ----
   const auto tz = Clock::now();
-  r.measured = measurement_update(scan, r);
+  r.measured = measurement_update(scan, delta, r);
   r.timings.measurement_ms = ms_since(tz);
   if (!r.measured) r.skipped = SkipReason::kNoValidBeams;
   force_ = false;
@@ -104,7 +108,14 @@ UpdateResult Localizer::update(const Pose2& odometry_pose, const LaserScan& scan
   // ---- Estimate before resampling (resampling only adds noise to it). ----
   const auto te = Clock::now();
   compute_estimate(r);
-  if (r.measured) count_background(r);
+  if (r.measured) {
+    count_background(r);
+    if (hypotheses_ && r.converged) hypotheses_->converged(origin_.between(r.estimate));
+  }
+  // The filter's own dynamics (tempering limit, recovery averages) follow the cluster;
+  // what it reports also doubts a cluster that another place outweighs so far.
+  clustered_ = r.converged;
+  if (r.alternative_evidence > 0.0) r.converged = false;
   r.timings.estimate_ms = ms_since(te);
 
   if (r.measured) {
@@ -140,7 +151,7 @@ void Localizer::motion_update(const Pose2& odom_prev, const Pose2& odom_now) {
   });
 }
 
-bool Localizer::measurement_update(const LaserScan& scan, UpdateResult& r) {
+bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, UpdateResult& r) {
   valid_beam_indices(scan, field_->params().max_range, valid_);
   r.beams_invalid = scan.ranges.size() - valid_.size();
   select_beams(valid_, cfg_.likelihood.selection, selected_);
@@ -148,6 +159,17 @@ bool Localizer::measurement_update(const LaserScan& scan, UpdateResult& r) {
   if (selected_.empty()) return false;
 
   model_.prepare(scan, selected_);
+  if (hypotheses_) {
+    // Competing hypotheses may redraw some particles before the scan scores them all.
+    const detail::HypothesisStep h = hypotheses_->update(
+        scan, selected_, model_.beams(), origin_.between(anchor_).compose(delta), delta, p_.size());
+    seed_particles(h.seed);
+    r.seeded = h.seed.poses.empty() ? 0 : std::min(h.seed.count, p_.size());
+    r.switched = h.switched;
+    r.searched = h.searched;
+    r.competitors = h.competitors;
+    r.alternative_evidence = h.alternative_evidence;
+  }
   const std::size_t n = p_.size();
   sum_q_.resize(n);
   if (cfg_.threads == 1)
@@ -163,7 +185,7 @@ bool Localizer::measurement_update(const LaserScan& scan, UpdateResult& r) {
   // its covariance is within the convergence bounds): while a global search is under way
   // the set is spread anyway, and a long-term average seeded by that search's poor fit
   // would later hide a kidnapping for dozens of scans.
-  if (cfg_.filter.recovery.enabled && (have_averages_ || last_.converged)) {
+  if (cfg_.filter.recovery.enabled && (have_averages_ || clustered_)) {
     // Augmented MCL's average likelihood, under the weights before this scan (Table 8.3
     // line 6), per beam: sum_i w_i exp(ll_i / M).
     double w_avg = 0.0;
@@ -179,7 +201,7 @@ bool Localizer::measurement_update(const LaserScan& scan, UpdateResult& r) {
   const double tau_cfg =
       lc.effective_beams > 0.0 ? std::min(1.0, lc.effective_beams / m) : lc.tempering;
   const double tau =
-      last_.converged ? tau_cfg : detail::limit_tempering(p_.log_w, ll_, tau_cfg, lc.min_ess_ratio);
+      clustered_ ? tau_cfg : detail::limit_tempering(p_.log_w, ll_, tau_cfg, lc.min_ess_ratio);
   r.tempering = tau;
   for (std::size_t i = 0; i < n; ++i) p_.log_w[i] += tau * ll_[i];
   (void)normalise_log_weights(p_.log_w, p_.w);
@@ -234,7 +256,10 @@ void Localizer::limit_probation_weight() {
 
 void Localizer::count_background(UpdateResult& r) const noexcept {
   const Pose2 local = origin_.between(r.estimate);
-  r.beams_background = model_.score_pose(local.x, local.y, local.theta).background;
+  const PoseScore s = model_.score_pose(local.x, local.y, local.theta);
+  r.beams_background = s.background;
+  r.fit = static_cast<double>(s.fitting) /
+          static_cast<double>(std::max<std::size_t>(1, model_.beams().size()));
 }
 
 }  // namespace pgmcl

@@ -170,6 +170,35 @@ void read_all(YamlMap& root, Reader& r, LocalizerConfig& c) {
     r.number(m, "converged_theta_std", e.converged_theta_std);
     m.finish();
   }
+  {
+    HypothesesConfig& h = c.hypotheses;
+    YamlMap m = root.child("hypotheses");
+    r.flag(m, "enabled", h.enabled);
+    YamlMap s = m.child("search");
+    r.number(s, "leaf_size", h.search.leaf_size);
+    r.integer(s, "root_levels", h.search.root_levels, 1, 12);
+    r.count(s, "max_beams", h.search.max_beams);
+    r.number(s, "min_angle_step", h.search.min_angle_step);
+    r.number(s, "max_angle_step", h.search.max_angle_step);
+    s.finish();
+    r.count(m, "global_candidates", h.global_candidates);
+    r.number(m, "global_seed_fraction", h.global_seed_fraction);
+    r.number(m, "candidate_margin", h.candidate_margin);
+    r.count(m, "global_budget", h.global_budget);
+    r.count(m, "max_competitors", h.max_competitors);
+    r.number(m, "switch_evidence", h.switch_evidence);
+    r.number(m, "drop_evidence", h.drop_evidence);
+    r.number(m, "switch_seed_fraction", h.switch_seed_fraction);
+    r.number(m, "rival_view", h.rival_view);
+    r.number(m, "rescue_fit_ratio", h.rescue_fit_ratio);
+    r.number(m, "rescue_xy", h.rescue_xy);
+    r.number(m, "rescue_theta", h.rescue_theta);
+    r.count(m, "rescue_budget", h.rescue_budget);
+    r.number(m, "sweep_share", h.sweep_share);
+    r.number(m, "separation_xy", h.separation_xy);
+    r.number(m, "separation_theta", h.separation_theta);
+    m.finish();
+  }
   r.name(root, "time_backwards", c.time_backwards, time_policy, "throw, reset");
   r.integer(root, "threads", c.threads, 0, 4096);
   r.seed(root, "seed", c.seed);
@@ -377,6 +406,39 @@ std::string localizer_config_yaml(const LocalizerConfig& c) {
   out << YAML::Key << "converged_weight" << YAML::Value << e.converged_weight;
   out << YAML::Key << "converged_xy_std" << YAML::Value << e.converged_xy_std;
   out << YAML::Key << "converged_theta_std" << YAML::Value << e.converged_theta_std;
+  out << YAML::EndMap;
+
+  const HypothesesConfig& h = c.hypotheses;
+  out << YAML::Key << "hypotheses" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "enabled" << YAML::Value << h.enabled;
+  out << YAML::Key << "search" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "leaf_size" << YAML::Value << h.search.leaf_size;
+  out << YAML::Key << "root_levels" << YAML::Value << h.search.root_levels;
+  out << YAML::Key << "max_beams" << YAML::Value
+      << static_cast<unsigned long long>(h.search.max_beams);
+  out << YAML::Key << "min_angle_step" << YAML::Value << h.search.min_angle_step;
+  out << YAML::Key << "max_angle_step" << YAML::Value << h.search.max_angle_step;
+  out << YAML::EndMap;
+  out << YAML::Key << "global_candidates" << YAML::Value
+      << static_cast<unsigned long long>(h.global_candidates);
+  out << YAML::Key << "global_seed_fraction" << YAML::Value << h.global_seed_fraction;
+  out << YAML::Key << "candidate_margin" << YAML::Value << h.candidate_margin;
+  out << YAML::Key << "global_budget" << YAML::Value
+      << static_cast<unsigned long long>(h.global_budget);
+  out << YAML::Key << "max_competitors" << YAML::Value
+      << static_cast<unsigned long long>(h.max_competitors);
+  out << YAML::Key << "switch_evidence" << YAML::Value << h.switch_evidence;
+  out << YAML::Key << "drop_evidence" << YAML::Value << h.drop_evidence;
+  out << YAML::Key << "switch_seed_fraction" << YAML::Value << h.switch_seed_fraction;
+  out << YAML::Key << "rival_view" << YAML::Value << h.rival_view;
+  out << YAML::Key << "rescue_fit_ratio" << YAML::Value << h.rescue_fit_ratio;
+  out << YAML::Key << "rescue_xy" << YAML::Value << h.rescue_xy;
+  out << YAML::Key << "rescue_theta" << YAML::Value << h.rescue_theta;
+  out << YAML::Key << "rescue_budget" << YAML::Value
+      << static_cast<unsigned long long>(h.rescue_budget);
+  out << YAML::Key << "sweep_share" << YAML::Value << h.sweep_share;
+  out << YAML::Key << "separation_xy" << YAML::Value << h.separation_xy;
+  out << YAML::Key << "separation_theta" << YAML::Value << h.separation_theta;
   out << YAML::EndMap;
 
   out << YAML::Key << "time_backwards" << YAML::Value

@@ -36,6 +36,10 @@
 #include "pgmcl/mcl/update_result.hpp"
 
 namespace pgmcl {
+namespace detail {
+class HypothesisTracker;
+struct SeedRequest;
+}  // namespace detail
 
 /// Linear indices (row * width + col) of the grid's free cells (OccupancyGrid::free):
 /// where global localisation and random injection may put particles.
@@ -52,6 +56,9 @@ class Localizer {
   /// range. The field's own parameters win over cfg.likelihood.beam / .table.
   Localizer(std::shared_ptr<const maps::LikelihoodField> field,
             std::vector<std::uint32_t> free_cells, const LocalizerConfig& cfg);
+  ~Localizer();
+  Localizer(Localizer&&) noexcept;
+  Localizer& operator=(Localizer&&) noexcept;
 
   /// One filter step for the scan taken at `odometry_pose` (odometry frame) and `stamp`
   /// (seconds). Throws std::invalid_argument, before any state change, when the scan is
@@ -90,8 +97,11 @@ class Localizer {
   void validate_scan(const LaserScan& scan) const;
   [[nodiscard]] Pose2 random_free_pose(Rng& rng) const noexcept;
   void motion_update(const Pose2& odom_prev, const Pose2& odom_now);
-  /// Returns false (and leaves weights alone) when no beam is valid.
-  bool measurement_update(const LaserScan& scan, UpdateResult& r);
+  /// Returns false (and leaves weights alone) when no beam is valid. `delta`: odometry
+  /// increment since the last filter update (robot frame).
+  bool measurement_update(const LaserScan& scan, const Pose2& delta, UpdateResult& r);
+  /// Redraws the `count` lightest particles around `seed.poses` before the scan scores them.
+  void seed_particles(const detail::SeedRequest& seed);
   void update_recovery_averages(double w_avg, UpdateResult& r) noexcept;
   void limit_probation_weight();
   void resample(UpdateResult& r);
@@ -126,6 +136,9 @@ class Localizer {
   KldBinner binner_;
   double kld_z_ = 0.0;  // normal_quantile(1 - kld.delta)
   ParticleClusterer clusterer_;
+  std::unique_ptr<detail::HypothesisTracker> hypotheses_;  // null when disabled
+  std::vector<std::uint32_t> victims_;                     // seed_particles() scratch
+  bool clustered_ = false;  // the last estimate met EstimateConfig's cluster criterion
 
   // Filter state.
   bool have_odom_ = false;

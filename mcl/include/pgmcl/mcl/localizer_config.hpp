@@ -10,6 +10,7 @@
 #include "pgmcl/maps/likelihood_field.hpp"
 #include "pgmcl/mcl/beam_selection.hpp"
 #include "pgmcl/mcl/motion_model.hpp"
+#include "pgmcl/mcl/pose_search.hpp"
 
 namespace pgmcl {
 
@@ -164,6 +165,42 @@ struct EstimateConfig {
   double converged_theta_std = 10.0 * std::numbers::pi / 180.0;  ///< radians
 };
 
+/// Competing hypotheses from scan-to-map search (pose_search.hpp): poses that odometry and
+/// the particle set cannot explain but the map does. A global search seeds the particles
+/// until the first convergence after global_localize(); while tracking, a search around
+/// the prediction when the scan stops fitting it (odometry glitches, wheel slip) and a
+/// sweep of the map (another place that fits as well) propose competitors. Each is moved by
+/// odometry and scored against the prediction; its evidence (the tempered log-likelihood
+/// ratio, fading over 10 m of new view) decides: while it is positive the filter does not
+/// report `converged`; when it wins (rules in mcl/README.md), part of the set is redrawn
+/// there. Measured in bench/robustness (README).
+struct HypothesesConfig {
+  bool enabled = true;
+  PoseSearchConfig search{};
+  std::size_t global_candidates = 64;  ///< distinct places seeded per global search
+  double global_seed_fraction = 0.5;   ///< of the particles redrawn around them per update
+  double candidate_margin = 15.0;      ///< tempered nats: global candidates within this of the best
+  std::uint64_t global_budget = 20'000'000;  ///< beam lookups per global search
+  std::size_t max_competitors = 4;           ///< hypotheses tracked beside the estimate
+  double switch_evidence = 8.0;              ///< tempered nats a competitor needs to take over
+  double drop_evidence = -15.0;              ///< tempered nats below which a competitor is dropped
+  double switch_seed_fraction = 0.5;         ///< of the particles redrawn around a winner
+  /// New view (metres travelled + metres per radian turned) over which a place the global
+  /// search proposed must stay ahead before the filter moves there.
+  double rival_view = 2.0;
+  /// Search around the prediction when its fit (beams that fit the map) falls below this
+  /// fraction of its running mean.
+  double rescue_fit_ratio = 0.6;
+  double rescue_xy = 2.5;                   ///< metres, half-width of that search
+  double rescue_theta = 0.7;                ///< radians (40 deg), half-width of that search
+  std::uint64_t rescue_budget = 2'000'000;  ///< beam lookups per rescue search
+  /// Map sweep while tracking, a root block at a time: lookups per update, as a share of
+  /// the particles' own (particles x beams). 0 turns the sweep off.
+  double sweep_share = 0.25;
+  double separation_xy = 1.0;      ///< metres: closer hypotheses are the same place
+  double separation_theta = 0.44;  ///< radians (25 deg)
+};
+
 /// What update() does when `stamp` is earlier than the previous update's stamp.
 enum class TimeBackwardsPolicy : std::uint8_t {
   kThrow,  ///< throw std::invalid_argument; the filter state is untouched (default)
@@ -177,6 +214,7 @@ struct LocalizerConfig {
   FilterConfig filter{};
   GatingConfig gating{};
   EstimateConfig estimate{};
+  HypothesesConfig hypotheses{};
   TimeBackwardsPolicy time_backwards = TimeBackwardsPolicy::kThrow;
   int threads = 1;          ///< OpenMP threads for motion + measurement; 0 = OpenMP default
   std::uint64_t seed = 42;  ///< every random stream derives from this (random.hpp)

@@ -37,7 +37,9 @@ struct UpdateResult {
   Eigen::Matrix3d mean_covariance = Eigen::Matrix3d::Zero();  ///< of `mean`, global frame
   double cluster_weight = 0.0;  ///< weight of the heaviest cluster, in [0, 1]
   std::size_t clusters = 0;     ///< number of clusters found
-  bool converged = false;       ///< criterion in EstimateConfig
+  /// One dominant compact cluster (EstimateConfig) and no competing hypothesis that fits
+  /// better so far (HypothesesConfig).
+  bool converged = false;
 
   SkipReason skipped = SkipReason::kNone;
   bool motion_applied = false;
@@ -56,6 +58,19 @@ struct UpdateResult {
   /// Of the used beams, those whose endpoint seen from `estimate` reads the table's
   /// background (beyond the kernel's reach or off the map): no table work was done there.
   std::size_t beams_background = 0;
+  /// Of the used beams, the fraction whose endpoint seen from `estimate` lies within 3
+  /// effective sigmas of a mapped obstacle (kFitSigmas): how much of the scan the map
+  /// explains there. Near 1 on a well-mapped scene; low in clutter, open space, or when lost.
+  double fit = 0.0;
+
+  /// Competing hypotheses (HypothesesConfig) tracked after this update, and the largest
+  /// evidence among them (tempered nats; > 0: another place fits better so far, and
+  /// `converged` is false). 0 when there are none.
+  std::size_t competitors = 0;
+  double alternative_evidence = 0.0;
+  std::size_t seeded = 0;  ///< particles redrawn around searched hypotheses this update
+  bool switched = false;   ///< the filter moved to a competitor that outweighed it
+  bool searched = false;   ///< a scan-to-map search ran this update (global or rescue)
 
   UpdateTimings timings{};
 };

@@ -58,6 +58,76 @@ void write_error_png(const std::string& path, const io::AteResult& ate, double t
   io::write_png(c, path);
 }
 
+/// One row of updates.csv: what the filter said about itself at each update.
+struct UpdateRow {
+  double stamp;
+  Pose2 estimate;
+  int skipped;
+  bool converged;
+  double fit, n_eff, evidence;
+  std::size_t particles, competitors, seeded, injected;
+  bool switched, searched;
+  static UpdateRow of(double stamp, const UpdateResult& r) {
+    return {stamp,
+            r.estimate,
+            static_cast<int>(r.skipped),
+            r.converged,
+            r.fit,
+            r.n_eff,
+            r.alternative_evidence,
+            r.particles,
+            r.competitors,
+            r.seeded,
+            r.injected,
+            r.switched,
+            r.searched};
+  }
+};
+
+void write_updates_csv(const std::string& path, const std::vector<UpdateRow>& rows,
+                       const io::Trajectory* truth) {
+  io::Trajectory sorted;
+  if (truth) {
+    sorted = *truth;
+    io::sort_by_stamp(sorted);
+  }
+  std::ofstream f(path);
+  f << "stamp,x,y,theta,skipped,converged,fit,n_eff,particles,competitors,evidence,seeded,"
+       "injected,switched,searched,error_m,error_deg\n";
+  char buf[512];
+  for (const UpdateRow& u : rows) {
+    double e = std::nan(""), eth = std::nan("");
+    if (truth) {
+      if (const auto t = io::interpolate_at(sorted, u.stamp, 1.0)) {
+        e = std::hypot(t->x - u.estimate.x, t->y - u.estimate.y);
+        eth = std::abs(wrap_angle(t->theta - u.estimate.theta)) * kRadToDeg;
+      }
+    }
+    std::snprintf(buf, sizeof buf,
+                  "%.6f,%.4f,%.4f,%.5f,%d,%d,%.3f,%.1f,%zu,%zu,%.2f,%zu,%zu,%d,%d,%.4f,%.2f\n",
+                  u.stamp, u.estimate.x, u.estimate.y, u.estimate.theta, u.skipped,
+                  u.converged ? 1 : 0, u.fit, u.n_eff, u.particles, u.competitors, u.evidence,
+                  u.seeded, u.injected, u.switched ? 1 : 0, u.searched ? 1 : 0, e, eth);
+    f << buf;
+  }
+  if (!f) throw io::IoError(path + ": write failed");
+}
+
+/// Updates that reported `converged` while more than 1 m off (AteOptions::lost_translation).
+void count_false_convergence(const std::vector<UpdateRow>& rows, const io::AteResult& ate,
+                             io::AccuracyMetrics& a) {
+  const double lost = io::AteOptions{}.lost_translation;
+  std::size_t run = 0, j = 0;
+  for (const UpdateRow& u : rows) {
+    while (j < ate.errors.size() && ate.errors[j].stamp < u.stamp) ++j;
+    const bool matched = j < ate.errors.size() && ate.errors[j].stamp == u.stamp;
+    const bool wrong = matched && u.skipped == 0 && u.converged && ate.errors[j].translation > lost;
+    run = wrong ? run + 1 : 0;
+    a.false_converged += wrong ? 1 : 0;
+    a.false_converged_run = std::max(a.false_converged_run, run);
+  }
+}
+
 std::string format_pose(const Pose2& p) {
   char buf[96];
   std::snprintf(buf, sizeof buf, "(%.3f, %.3f, %.1f deg)", p.x, p.y, p.theta * kRadToDeg);
@@ -132,6 +202,8 @@ io::RunMetrics run_localization(const LocalizeJob& job) {
   if (!job.quiet) std::fprintf(stderr, "localize: start: %s\n", init_text.c_str());
 
   io::MetricsAccumulator acc;
+  std::vector<UpdateRow> rows;
+  rows.reserve(usable);
   io::Trajectory trajectory;
   trajectory.reserve(usable);
   io::Progress progress = io::Progress::on_stderr("localize", usable, job.quiet);
@@ -157,8 +229,9 @@ io::RunMetrics run_localization(const LocalizeJob& job) {
                             std::string("rejected by the filter: ") + e.what());
     }
     trajectory.push_back({stamp, r.estimate});
+    rows.push_back(UpdateRow::of(stamp, r));
     if (r.skipped == SkipReason::kNone) {
-      acc.add_update(r.timings.total_ms, r.particles, r.beams_used);
+      acc.add_update(r.timings.total_ms, r.particles, r.beams_used, r.fit, r.converged);
     } else {
       acc.add_skipped();
     }
@@ -186,6 +259,7 @@ io::RunMetrics run_localization(const LocalizeJob& job) {
   if (job.truth) {
     ate = io::evaluate_ate(trajectory, *job.truth);
     m.accuracy = io::accuracy_metrics(*ate);
+    count_false_convergence(rows, *ate, *m.accuracy);
   }
   if (job.relations) {
     io::RelationOptions ro;
@@ -197,6 +271,7 @@ io::RunMetrics run_localization(const LocalizeJob& job) {
   const std::filesystem::path dir = ensure_directory(job.out_dir);
   io::write_tum((dir / "trajectory.tum").string(), trajectory);
   io::write_metrics_yaml((dir / "metrics.yaml").string(), m);
+  write_updates_csv((dir / "updates.csv").string(), rows, job.truth ? &*job.truth : nullptr);
   {
     std::ofstream f(dir / "config.yaml");
     f << io::localizer_config_yaml(job.config);
@@ -223,19 +298,25 @@ std::string summary_line(const io::RunMetrics& m, const std::string& out_dir) {
   char buf[512];
   int n = std::snprintf(buf, sizeof buf,
                         "localize: %zu updates (%zu skipped), %.2f ms/update (p95 %.2f), "
-                        "%.0f particles, %.0f beams",
+                        "%zu..%zu particles (mean %.0f), %.0f beams, fit %.2f, converged on "
+                        "%.0f %% of updates",
                         m.updates, m.skipped_updates, m.update_ms_mean, m.update_ms_p95,
-                        m.particles_mean, m.beams_used_mean);
+                        m.particles_min, m.particles_max, m.particles_mean, m.beams_used_mean,
+                        m.fit_mean, 100.0 * m.converged_fraction);
   std::string s(buf, static_cast<std::size_t>(std::max(n, 0)));
   if (m.accuracy) {
     const auto& a = *m.accuracy;
     n = std::snprintf(buf, sizeof buf, "; ATE RMSE %.3f m (max %.3f), heading RMSE %.2f deg",
                       a.ate_rmse_m, a.ate_max_m, a.heading_rmse_deg);
     s.append(buf, static_cast<std::size_t>(std::max(n, 0)));
-    if (a.converged_after_s) {
-      n = std::snprintf(buf, sizeof buf, ", converged after %.1f s", *a.converged_after_s);
+    if (a.lock_on_s) {
+      n = std::snprintf(buf, sizeof buf,
+                        "; locked on (within 1 m from then on) at %.1f s after %.1f m, then ATE "
+                        "%.3f m (max %.3f); wrongly converged on %zu updates",
+                        *a.lock_on_s, a.lock_on_travel_m, a.post_lock_ate_rmse_m,
+                        a.post_lock_ate_max_m, a.false_converged);
     } else {
-      n = std::snprintf(buf, sizeof buf, ", never converged");
+      n = std::snprintf(buf, sizeof buf, "; lost (more than 1 m off) at the end");
     }
     s.append(buf, static_cast<std::size_t>(std::max(n, 0)));
   }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <span>
 
 namespace pgmcl::io {
 namespace {
@@ -25,9 +26,11 @@ AteResult evaluate_ate(const Trajectory& estimate, const Trajectory& truth, cons
   res.estimated = est.size();
   constexpr double kRadToDeg = 180.0 / std::numbers::pi;
   std::vector<double> trans, rot;
+  std::vector<Pose2> matched_truth;
   for (const StampedPose& e : est) {
     const auto t = truth_at(ref, e.stamp + opt.time_offset, opt);
     if (!t) continue;
+    matched_truth.push_back(*t);
     const PoseError pe{e.stamp, std::hypot(e.pose.x - t->x, e.pose.y - t->y),
                        std::abs(wrap_angle(e.pose.theta - t->theta)) * kRadToDeg};
     res.errors.push_back(pe);
@@ -53,6 +56,16 @@ AteResult evaluate_ate(const Trajectory& estimate, const Trajectory& truth, cons
     if (first_good < res.errors.size()) {
       res.converged_after_s =
           first_good == 0 ? 0.0 : res.errors[first_good].stamp - est.front().stamp;
+    }
+    std::size_t lock = res.errors.size();
+    while (lock > 0 && res.errors[lock - 1].translation <= opt.lost_translation) --lock;
+    if (lock < res.errors.size()) {
+      res.lock_on_s = lock == 0 ? 0.0 : res.errors[lock].stamp - est.front().stamp;
+      for (std::size_t i = 1; i <= lock; ++i)
+        res.lock_on_travel_m += std::hypot(matched_truth[i].x - matched_truth[i - 1].x,
+                                           matched_truth[i].y - matched_truth[i - 1].y);
+      res.post_lock_translation = error_stats(std::span<const double>(trans).subspan(lock));
+      res.post_lock_heading = error_stats(std::span<const double>(rot).subspan(lock));
     }
   }
   return res;

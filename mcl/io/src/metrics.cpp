@@ -30,7 +30,11 @@ std::vector<std::pair<std::string, std::string>> rows(const RunMetrics& m, bool 
         {"update_ms_p95", num(m.update_ms_p95)},
         {"wall_s", num(m.wall_s)},
         {"particles_mean", num(m.particles_mean)},
+        {"particles_min", std::to_string(m.particles_min)},
+        {"particles_max", std::to_string(m.particles_max)},
         {"beams_used_mean", num(m.beams_used_mean)},
+        {"fit_mean", num(m.fit_mean)},
+        {"converged_fraction", num(m.converged_fraction)},
     };
   }
   if (m.accuracy) {
@@ -41,6 +45,15 @@ std::vector<std::pair<std::string, std::string>> rows(const RunMetrics& m, bool 
     r.emplace_back("converged_after_s",
                    a.converged_after_s ? num(*a.converged_after_s) : std::string("null"));
     r.emplace_back("truth_matched", std::to_string(a.matched));
+    r.emplace_back("lock_on_s", a.lock_on_s ? num(*a.lock_on_s) : std::string("null"));
+    r.emplace_back("lock_on_travel_m", num(a.lock_on_travel_m));
+    r.emplace_back("post_lock_ate_rmse_m", num(a.post_lock_ate_rmse_m));
+    r.emplace_back("post_lock_ate_max_m", num(a.post_lock_ate_max_m));
+    r.emplace_back("post_lock_heading_rmse_deg", num(a.post_lock_heading_rmse_deg));
+    if (run_figures) {
+      r.emplace_back("false_converged", std::to_string(a.false_converged));
+      r.emplace_back("false_converged_run", std::to_string(a.false_converged_run));
+    }
   }
   if (m.relations) {
     r.emplace_back("relations_trans_m", num(m.relations->trans_m));
@@ -61,6 +74,11 @@ AccuracyMetrics accuracy_metrics(const AteResult& ate) {
   a.heading_rmse_deg = ate.heading.rms;
   a.converged_after_s = ate.converged_after_s;
   a.matched = ate.matched;
+  a.lock_on_s = ate.lock_on_s;
+  a.lock_on_travel_m = ate.lock_on_travel_m;
+  a.post_lock_ate_rmse_m = ate.post_lock_translation.rms;
+  a.post_lock_ate_max_m = ate.post_lock_translation.max;
+  a.post_lock_heading_rmse_deg = ate.post_lock_heading.rms;
   return a;
 }
 
@@ -69,11 +87,15 @@ RelationsMetrics relations_metrics(const RelationResult& rel) {
           rel.rotation.stddev};
 }
 
-void MetricsAccumulator::add_update(double update_ms, std::size_t particles,
-                                    std::size_t beams_used) {
+void MetricsAccumulator::add_update(double update_ms, std::size_t particles, std::size_t beams_used,
+                                    double fit, bool converged) {
+  particles_min_ = update_ms_.empty() ? particles : std::min(particles_min_, particles);
+  particles_max_ = std::max(particles_max_, particles);
   update_ms_.push_back(update_ms);
   particles_sum_ += static_cast<double>(particles);
   beams_sum_ += static_cast<double>(beams_used);
+  fit_sum_ += fit;
+  converged_ += converged ? 1 : 0;
 }
 
 RunMetrics MetricsAccumulator::summarise(double wall_s) const {
@@ -88,7 +110,11 @@ RunMetrics MetricsAccumulator::summarise(double wall_s) const {
     m.update_ms_mean = sum / n;
     m.update_ms_p95 = percentile(update_ms_, 95.0);
     m.particles_mean = particles_sum_ / n;
+    m.particles_min = particles_min_;
+    m.particles_max = particles_max_;
     m.beams_used_mean = beams_sum_ / n;
+    m.fit_mean = fit_sum_ / n;
+    m.converged_fraction = static_cast<double>(converged_) / n;
   }
   return m;
 }

@@ -29,6 +29,9 @@ struct AteOptions {
   /// Converged once both errors stay at or below these for the rest of the run.
   double converged_translation = 0.5;    ///< metres
   double converged_rotation_deg = 10.0;  ///< degrees
+  /// Locked on once the position error stays at or below this for the rest of the run;
+  /// a larger error is "lost" (the robustness benchmark's failure threshold).
+  double lost_translation = 1.0;  ///< metres
 };
 
 struct PoseError {
@@ -46,7 +49,14 @@ struct AteResult {
   /// Seconds from the first estimate stamp to the first matched pose after which every
   /// matched pose is within both thresholds (0 if all are); empty if the last one is not.
   std::optional<double> converged_after_s;
-  std::vector<PoseError> errors;  ///< per matched pose, in time order
+  /// Seconds from the first estimate stamp to the first matched pose after which every
+  /// position error stays within lost_translation (0: never lost); empty if the last one
+  /// is lost. With it: the truth's path length up to then, and the errors from then on.
+  std::optional<double> lock_on_s;
+  double lock_on_travel_m = 0.0;
+  ErrorStats post_lock_translation;  ///< metres
+  ErrorStats post_lock_heading;      ///< degrees
+  std::vector<PoseError> errors;     ///< per matched pose, in time order
 };
 
 /// Both trajectories may come in any order (they are sorted by stamp internally).

@@ -20,6 +20,18 @@ struct AccuracyMetrics {
   /// Seconds from the first estimate until the error stays small; nullopt if never.
   std::optional<double> converged_after_s;
   std::size_t matched = 0;  ///< estimate poses matched to ground truth
+  /// Lock-on (AteResult): seconds from the first estimate until the position error stays
+  /// within 1 m (0: never lost; nullopt: lost at the end), the truth's path length until
+  /// then, and the errors after it.
+  std::optional<double> lock_on_s;
+  double lock_on_travel_m = 0.0;
+  double post_lock_ate_rmse_m = 0.0;
+  double post_lock_ate_max_m = 0.0;
+  double post_lock_heading_rmse_deg = 0.0;
+  /// Updates on which the filter reported `converged` while more than 1 m off, and the
+  /// longest run of them: what the filter said about itself that was not true.
+  std::size_t false_converged = 0;
+  std::size_t false_converged_run = 0;
 };
 
 /// Kümmerle et al. (2009) relations error.
@@ -39,7 +51,11 @@ struct RunMetrics {
   double update_ms_p95 = 0.0;       ///< 95th percentile (nearest rank), milliseconds
   double wall_s = 0.0;              ///< whole run, seconds
   double particles_mean = 0.0;      ///< over performed updates
+  std::size_t particles_min = 0;    ///< over performed updates
+  std::size_t particles_max = 0;    ///< over performed updates
   double beams_used_mean = 0.0;     ///< over performed updates
+  double fit_mean = 0.0;            ///< UpdateResult::fit over performed updates
+  double converged_fraction = 0.0;  ///< of performed updates that reported `converged`
   std::optional<AccuracyMetrics> accuracy;
   std::optional<RelationsMetrics> relations;
 };
@@ -54,7 +70,8 @@ struct RunMetrics {
 /// Collects per-update figures during a run.
 class MetricsAccumulator {
  public:
-  void add_update(double update_ms, std::size_t particles, std::size_t beams_used);
+  void add_update(double update_ms, std::size_t particles, std::size_t beams_used, double fit = 0.0,
+                  bool converged = false);
   void add_skipped() { ++skipped_; }
   /// Means and the p95 so far; accuracy and relations are left empty.
   [[nodiscard]] RunMetrics summarise(double wall_s) const;
@@ -62,7 +79,10 @@ class MetricsAccumulator {
  private:
   std::vector<double> update_ms_;
   double particles_sum_ = 0.0;
+  std::size_t particles_min_ = 0, particles_max_ = 0;
   double beams_sum_ = 0.0;
+  double fit_sum_ = 0.0;
+  std::size_t converged_ = 0;
   std::size_t skipped_ = 0;
 };
 

@@ -166,6 +166,14 @@ io::CarmenLog read_log(const std::string& path, const io::CarmenReadOptions& opt
     }
     if (r.malformed > listed) std::fprintf(stderr, "  ... %zu more\n", r.malformed - listed);
   }
+  if (r.derived_front_mount) {
+    const Pose2& m = *r.derived_front_mount;
+    std::fprintf(stderr,
+                 "pgmcl: note: %s: no PARAM robot_frontlaser_offset; the FLASER laser poses put "
+                 "the laser at (%.3f m, %.3f m, %.2f deg) from the odometry pose on every scan, "
+                 "so that is its mounting\n",
+                 path.c_str(), m.x, m.y, m.theta * 180.0 / 3.141592653589793);
+  }
   return log;
 }
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 
@@ -155,6 +156,37 @@ TEST(CarmenMessages, FlaserFieldsAndParams) {
   ASSERT_EQ(truth.size(), 1u);
   EXPECT_NEAR(truth[0].pose.x, 1 - 0.25 * std::cos(0.5), 1e-12);
   EXPECT_NEAR(truth[0].pose.y, 2 - 0.25 * std::sin(0.5), 1e-12);
+}
+
+// Without PARAM robot_frontlaser_offset, a laser logged 25 cm ahead of the odometry pose on
+// every scan is read as mounted there; the corrected benchmark logs, whose odometry fields
+// are re-anchored, keep a zero mounting.
+TEST(CarmenMessages, FlaserMountingFromTheLoggedPosesWithoutParam) {
+  auto line = [](const Pose2& odom, const Pose2& laser, double t) {
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "FLASER 3 1 1 1 %.9f %.9f %.9f %.9f %.9f %.9f %.3f host %.3f\n",
+                  laser.x, laser.y, laser.theta, odom.x, odom.y, odom.theta, t, t);
+    return std::string(buf);
+  };
+  const Pose2 mount{0.25, 0.0, 0.0};
+  std::string text;
+  for (int i = 0; i < 5; ++i) {
+    const Pose2 odom{1.0 + 0.3 * i, -2.0 + 0.1 * i * i, 0.4 * i - 1.0};
+    text += line(odom, odom.compose(mount), i);
+  }
+  const CarmenLog log = parse_carmen(text, "synthetic");
+  ASSERT_TRUE(log.report.derived_front_mount);
+  for (const CarmenScan& s : log.scans) {
+    EXPECT_NEAR(s.scan.sensor_pose.x, 0.25, 1e-6);
+    EXPECT_NEAR(s.scan.sensor_pose.y, 0.0, 1e-6);
+    EXPECT_NEAR(s.scan.sensor_pose.theta, 0.0, 1e-6);
+  }
+  // Not constant (the mounting changes on the third scan): no mounting derived.
+  text += line({5, 5, 0}, Pose2{5, 5, 0}.compose({0.1, 0.0, 0.0}), 6);
+  const CarmenLog mixed = parse_carmen(text, "synthetic");
+  EXPECT_FALSE(mixed.report.derived_front_mount);
+  EXPECT_TRUE(test::same_pose(mixed.scans[0].scan.sensor_pose, {}));
+  EXPECT_FALSE(read_carmen(intel_path()).report.derived_front_mount);
 }
 
 TEST(CarmenMessages, RobotLaserRawLaserTruePos) {

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <utility>
 
 #include "carmen_messages.hpp"
@@ -82,13 +83,20 @@ class CarmenParser {
         range_max(LaserMessage::kFlaser, opt_.front_range_max, "robot_front_laser_max");
     const double rear_max =
         range_max(LaserMessage::kRlaser, opt_.rear_range_max, "robot_rear_laser_max");
-    const double front_offset = param_number("robot_frontlaser_offset").value_or(0.0);
+    const std::optional<double> front_param = param_number("robot_frontlaser_offset");
     const double rear_offset = param_number("robot_rearlaser_offset").value_or(0.0);
+    Pose2 front_mount{front_param.value_or(0.0), 0.0, 0.0};
+    if (!front_param) {
+      if (const auto derived = constant_front_mount()) {
+        front_mount = *derived;
+        log_.report.derived_front_mount = derived;
+      }
+    }
     for (CarmenScan& s : log_.scans) {
       s.scan.range_min = opt_.range_min;
       if (s.message == LaserMessage::kFlaser) {
         s.scan.range_max = front_max;
-        s.scan.sensor_pose = {front_offset, 0.0, 0.0};
+        s.scan.sensor_pose = front_mount;
       } else if (s.message == LaserMessage::kRlaser) {
         s.scan.range_max = rear_max;
         s.scan.sensor_pose = {-rear_offset, 0.0, std::numbers::pi};
@@ -99,6 +107,26 @@ class CarmenParser {
   }
 
  private:
+  /// Without PARAM robot_frontlaser_offset, the mounting a log's FLASER poses imply: the
+  /// laser pose seen from the odometry pose, when it is the same (within 1 mm and 0.1 deg)
+  /// on every scan and at least 1 cm from the base. CARMEN writes laser = odometry ∘ mount;
+  /// the SLAM-corrected logs, whose odometry fields are re-anchored, never pass this.
+  [[nodiscard]] std::optional<Pose2> constant_front_mount() const {
+    std::optional<Pose2> mount;
+    std::size_t n = 0;
+    for (const CarmenScan& s : log_.scans) {
+      if (s.message != LaserMessage::kFlaser) continue;
+      const Pose2 m = s.odom_pose.between(s.laser_pose);
+      if (!mount) mount = m;
+      if (std::hypot(m.x - mount->x, m.y - mount->y) > 1e-3 ||
+          std::abs(wrap_angle(m.theta - mount->theta)) > 0.1 * std::numbers::pi / 180.0)
+        return std::nullopt;
+      ++n;
+    }
+    if (n < 2 || std::hypot(mount->x, mount->y) < 0.01) return std::nullopt;
+    return mount;
+  }
+
   void count(std::string_view type) { ++log_.report.records[std::string(type)]; }
 
   void keep(std::vector<LineIssue>& list, LineIssue issue) const {

@@ -23,6 +23,7 @@
 
 #include <cstddef>
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -137,8 +138,11 @@ struct ParseReport {
                                                ///< message of the same type (record kept)
   std::map<std::string, std::size_t> backwards_by_type;
   std::vector<LineIssue> backwards_lines;  ///< first max_issues of them
-  std::size_t invalid_beams = 0;           ///< NaN, Inf or negative ranges (beam kept,
-                                           ///< the filter skips it)
+  /// FLASER mounting derived from the logged laser and odometry poses (no PARAM
+  /// robot_frontlaser_offset, but the same offset on every scan); see CarmenReadOptions.
+  std::optional<Pose2> derived_front_mount;
+  std::size_t invalid_beams = 0;  ///< NaN, Inf or negative ranges (beam kept,
+                                  ///< the filter skips it)
 
   /// Multi-line human-readable summary (counts, first issues).
   [[nodiscard]] std::string summary(std::size_t max_listed = 10) const;
@@ -164,7 +168,9 @@ struct CarmenReadOptions {
   double range_min = 0.1;  ///< metres, copied into every LaserScan
   /// Mounting of the FLASER/RLASER laser on the robot. Unless overridden, CARMEN's PARAMs
   /// robot_frontlaser_offset (front: {offset, 0, 0}) and robot_rearlaser_offset (rear:
-  /// {-offset, 0, pi}) are used. ROBOTLASER1 derives it per scan: robot_pose^-1 * laser_pose.
+  /// {-offset, 0, pi}) are used; without the front PARAM, the offset of the FLASER laser
+  /// poses from their odometry poses when it is constant (ParseReport::derived_front_mount).
+  /// ROBOTLASER1 derives it per scan: robot_pose^-1 * laser_pose.
   bool override_sensor_pose = false;
   Pose2 sensor_pose{};
   std::size_t max_issues = 1000;  ///< issue details kept per category

@@ -8,6 +8,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev   # tests and micro-benchmarks
   clang libclang-rt-14-dev libomp-dev       # libFuzzer targets (clang) and OpenMP for clang
   gnuplot-nox                               # benchmark plots
+  python3                                   # the robustness suite (bench/robustness/run.py)
 )
 missing=()
 for p in "${packages[@]}"; do

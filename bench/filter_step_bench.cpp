@@ -10,7 +10,8 @@
 /// (UpdateResult::timings, steady_clock inside update()).
 ///
 /// Threads: OMP_NUM_THREADS (passed as LocalizerConfig::threads).
-/// Own flags: --out=DIR (DIR/filter_step_t<T>.csv), --particles=, --beams=, --kinds=, --size=50.
+/// Own flags: --out=DIR (DIR/filter_step_t<T>.csv), --particles=, --beams=, --kinds=, --size=50,
+/// --hypotheses=on|off (HypothesesConfig::enabled; default on, the engine's default).
 
 #include <benchmark/benchmark.h>
 
@@ -64,9 +65,12 @@ std::shared_ptr<const pgmcl::maps::LikelihoodField> field(World& w, TableKind ki
   return f;
 }
 
+bool g_hypotheses = true;
+
 void step(benchmark::State& state, TableKind kind, int size_m, std::size_t n, std::size_t beams) {
   World& w = world(size_m);
   pgmcl::LocalizerConfig cfg;
+  cfg.hypotheses.enabled = g_hypotheses;
   cfg.filter.particles = n;
   cfg.filter.global_particles = n;
   cfg.filter.kld.enabled = false;
@@ -112,14 +116,16 @@ void step(benchmark::State& state, TableKind kind, int size_m, std::size_t n, st
 
 int main(int argc, char** argv) {
   std::string out, particles = "1000,5000,20000", beams = "60,270,1081",
-                   kinds = "isotropic,oriented,offset", size = "50";
+                   kinds = "isotropic,oriented,offset", size = "50", hypotheses = "on";
   if (!pb::init_benchmark(argc, argv,
                           {{"out", &out},
                            {"particles", &particles},
                            {"beams", &beams},
                            {"kinds", &kinds},
-                           {"size", &size}}))
+                           {"size", &size},
+                           {"hypotheses", &hypotheses}}))
     return 2;
+  g_hypotheses = hypotheses != "off";
   const int size_m = std::stoi(size);
   for (const auto& k : pb::split_list(kinds)) {
     const TableKind kind = pgmcl::maps::table_kind_from_string(k);

@@ -9,6 +9,8 @@
 ///   metrics.yaml    io::RunMetrics (timing, particles, beams; accuracy with truth;
 ///                   relations error with relations)
 ///   config.yaml     the effective LocalizerConfig (every field), to rerun exactly
+///   updates.csv     one row per update: estimate, skip reason, converged, fit, N_eff,
+///                   particles, competing hypotheses, and the error with ground truth
 ///   overlay.png     map + ground truth + estimate + final particle cloud
 ///   error.png       position and heading error over time (only with ground truth)
 

@@ -32,8 +32,9 @@ constexpr double kGlitchReach = 1.2;
 // least this much (radians): along a corridor some shifted pose fits better wherever the
 // map is wrong.
 constexpr double kFadedHeading = 0.17;
-// A place elsewhere on the map (a kidnapping) must explain this many scans in a row.
-constexpr int kKidnapScans = 3;
+// A place elsewhere on the map (a kidnapping) must explain this many scans in a row while
+// the prediction stays lost: clutter can make a far place fit better for a few scans.
+constexpr int kKidnapScans = 10;
 // The map sweep's budget while the prediction is lost.
 constexpr double kLostSweepBoost = 10.0;
 
@@ -177,7 +178,8 @@ bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, doubl
     return c.origin == Competitor::Origin::kRescue && c.abrupt && lost && nearby &&
            c.fit >= fit + kGlitchGain;
   if (c.origin == Competitor::Origin::kSweep)  // a kidnapping: several scans, still lost
-    return c.abrupt && lost && c.age + 1 >= kKidnapScans && c.fit >= fit + kGlitchGain;
+    return c.abrupt && lost && c.age + 1 >= kKidnapScans && lost_updates_ >= kKidnapScans &&
+           c.fit >= fit + kGlitchGain;
   if (!c.abrupt &&
       !(nearby && std::abs(wrap_angle(c.pose.theta - ref.pose.theta)) >= kFadedHeading))
     return false;
@@ -197,9 +199,10 @@ void HypothesisTracker::maybe_switch(const Scored& ref, double fit, double step,
               0.5 * search_.leaf_size(),
               search_.angle_step()};
   out.switched = true;
-  // The old prediction becomes a competitor, with the evidence against it.
+  // The old prediction becomes a competitor, with the evidence against it; it may come back
+  // as a glitch candidate would, should the switch have been wrong.
   *winner = {ref.pose, -winner->evidence,           -winner->last, fit, 0.0,
-             0,        Competitor::Origin::kGlobal, false};
+             0,        Competitor::Origin::kRescue, true};
 }
 
 }  // namespace pgmcl::detail

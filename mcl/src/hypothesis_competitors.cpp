@@ -174,15 +174,14 @@ bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, doubl
   if (c.fit < (c.abrupt ? kNormalFit : 1.0) * usual) return false;
   const double moved = std::hypot(c.pose.x - ref.pose.x, c.pose.y - ref.pose.y);
   const bool nearby = moved <= std::max(kGlitchReach, std::sin(cfg_.rescue_theta) * step);
+  const double turned = std::abs(wrap_angle(c.pose.theta - ref.pose.theta));
   if (c.age == 0)  // at once, with this very scan: a glitch-sized correction only
     return c.origin == Competitor::Origin::kRescue && c.abrupt && lost && nearby &&
-           c.fit >= fit + kGlitchGain;
+           turned <= cfg_.rescue_theta && c.fit >= fit + kGlitchGain;
   if (c.origin == Competitor::Origin::kSweep)  // a kidnapping: several scans, still lost
     return c.abrupt && lost && c.age + 1 >= kKidnapScans && lost_updates_ >= kKidnapScans &&
            c.fit >= fit + kGlitchGain;
-  if (!c.abrupt &&
-      !(nearby && std::abs(wrap_angle(c.pose.theta - ref.pose.theta)) >= kFadedHeading))
-    return false;
+  if (!c.abrupt && !(nearby && turned >= kFadedHeading)) return false;
   return c.fit >= fit + (c.abrupt ? 0.5 : 1.0) * kGlitchGain;
 }
 

@@ -22,13 +22,13 @@
 #include <omp.h>
 #endif
 
+#include "pgmcl/common/laser_scan.hpp"
+#include "pgmcl/common/random.hpp"
+#include "pgmcl/common/se2.hpp"
 #include "pgmcl/maps/likelihood_field.hpp"
 #include "pgmcl/maps/occupancy_grid.hpp"
-#include "pgmcl/maps/se2.hpp"
-#include "pgmcl/mcl/laser_scan.hpp"
 #include "pgmcl/mcl/localizer_config.hpp"
 #include "pgmcl/mcl/particles.hpp"
-#include "pgmcl/mcl/random.hpp"
 #include "pgmcl/sims/ray_caster.hpp"
 
 namespace pgmcl::bench {

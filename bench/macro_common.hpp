@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "pgmcl/mcl/motion_model.hpp"
+#include "pgmcl/common/motion_model.hpp"
 #include "sweep/sweep_data.hpp"
 
 namespace pgmcl::bench {

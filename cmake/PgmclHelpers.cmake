@@ -15,17 +15,15 @@ endif()
 # Builds <name>/src/*.cpp into the static library pgmcl_<name>, exported as
 # pgmcl::<name>, with public headers under <name>/include/pgmcl/<name>/.
 function(pgmcl_add_component name)
-  cmake_parse_arguments(ARG "" "DIR" "PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
-  if(NOT ARG_DIR)
-    set(ARG_DIR ${CMAKE_CURRENT_SOURCE_DIR})
-  endif()
-  file(GLOB_RECURSE srcs CONFIGURE_DEPENDS ${ARG_DIR}/src/*.cpp)
+  cmake_parse_arguments(ARG "" "" "PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
+  set(dir ${CMAKE_CURRENT_SOURCE_DIR})
+  file(GLOB_RECURSE srcs CONFIGURE_DEPENDS ${dir}/src/*.cpp)
   add_library(pgmcl_${name} STATIC ${srcs})
   add_library(pgmcl::${name} ALIAS pgmcl_${name})
   set_target_properties(pgmcl_${name} PROPERTIES EXPORT_NAME ${name}
     POSITION_INDEPENDENT_CODE ON)
   target_include_directories(pgmcl_${name} PUBLIC
-    $<BUILD_INTERFACE:${ARG_DIR}/include>
+    $<BUILD_INTERFACE:${dir}/include>
     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   target_compile_features(pgmcl_${name} PUBLIC cxx_std_20)
   target_link_libraries(pgmcl_${name} PUBLIC ${ARG_PUBLIC_DEPS}
@@ -34,7 +32,7 @@ function(pgmcl_add_component name)
     target_link_libraries(pgmcl_${name} PUBLIC $<BUILD_INTERFACE:pgmcl_sanitizers>)
   endif()
   set_property(GLOBAL APPEND PROPERTY PGMCL_COMPONENTS ${name})
-  install(DIRECTORY ${ARG_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  install(DIRECTORY ${dir}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endfunction()
 
 # Link OpenMP when we have it; the code guards its pragmas with _OPENMP.

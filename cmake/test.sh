@@ -33,13 +33,25 @@ ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:ha
   ctest --test-dir build/asan --output-on-failure -j"$jobs"
 stage_done "[2/4]"
 
-echo "== [3/4] Install + find_package(pgmcl) consumer"
+echo "== [3/4] Install + find_package(pgmcl) consumers (whole package; pgmcl::mcl alone)"
 rm -rf build/install build/consumer
 cmake --install build/release --prefix build/install >/dev/null
 cmake -S mcl/examples/consumer -B build/consumer -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_PREFIX_PATH="$root/build/install" >/dev/null
 cmake --build build/consumer -j"$jobs"
 build/consumer/pgmcl_consumer "$root/data"
+# The engine alone needs none of the file-format libraries: their CMake packages are
+# disabled, and the program must not load them at run time either.
+rm -rf build/in_memory
+cmake -S mcl/examples/in_memory -B build/in_memory -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_PREFIX_PATH="$root/build/install" -DCMAKE_DISABLE_FIND_PACKAGE_yaml-cpp=ON \
+  -DCMAKE_DISABLE_FIND_PACKAGE_ZLIB=ON -DCMAKE_DISABLE_FIND_PACKAGE_PkgConfig=ON >/dev/null
+cmake --build build/in_memory -j"$jobs"
+if readelf -d build/in_memory/pgmcl_in_memory | grep -E "NEEDED.*(yaml-cpp|libz\.|stb)"; then
+  echo "pgmcl_in_memory links a file-format library" >&2
+  exit 1
+fi
+build/in_memory/pgmcl_in_memory
 stage_done "[3/4]"
 
 echo "== [4/4] Fuzzing (${fuzz_seconds}s per target)"

@@ -43,9 +43,9 @@
 
 #include "../macro_common.hpp"
 #include "../sweep/sweep_data.hpp"
+#include "pgmcl/common/random.hpp"
 #include "pgmcl/mcl/beam_selection.hpp"
 #include "pgmcl/mcl/localizer_config.hpp"
-#include "pgmcl/mcl/random.hpp"
 
 namespace pb = pgmcl::bench;
 

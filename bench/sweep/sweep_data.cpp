@@ -5,10 +5,10 @@
 #include <stdexcept>
 
 #include "../bench_common.hpp"
+#include "pgmcl/common/random.hpp"
+#include "pgmcl/config/scenario_yaml.hpp"
 #include "pgmcl/io/carmen.hpp"
-#include "pgmcl/io/scenario_yaml.hpp"
-#include "pgmcl/maps/map_io.hpp"
-#include "pgmcl/mcl/random.hpp"
+#include "pgmcl/map_io/map_io.hpp"
 #include "pgmcl/sims/scenario.hpp"
 
 namespace pgmcl::bench {

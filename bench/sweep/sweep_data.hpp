@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "pgmcl/common/laser_scan.hpp"
+#include "pgmcl/common/motion_model.hpp"
+#include "pgmcl/common/se2.hpp"
 #include "pgmcl/maps/occupancy_grid.hpp"
-#include "pgmcl/maps/se2.hpp"
-#include "pgmcl/mcl/laser_scan.hpp"
-#include "pgmcl/mcl/motion_model.hpp"
 
 namespace pgmcl::bench {
 

@@ -6,16 +6,12 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "pgmcl/io/cli_errors.hpp"
+#include "cli_errors.hpp"
 #include "pgmcl/io/errors.hpp"
 #include "pgmcl/io/tum.hpp"
+#include "pgmcl/io/values.hpp"
 
 namespace pgmcl::app {
-
-void not_available(std::string_view command, std::string_view why) {
-  throw io::NotAvailableError(std::string(command) + ": not available yet (" + std::string(why) +
-                              ")");
-}
 
 std::filesystem::path ensure_directory(const std::string& dir) {
   std::error_code ec;

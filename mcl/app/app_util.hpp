@@ -14,9 +14,6 @@
 
 namespace pgmcl::app {
 
-/// Throws NotAvailableError: "<command>: not available yet (<why>)".
-[[noreturn]] void not_available(std::string_view command, std::string_view why);
-
 /// Creates `dir` (and parents) if needed; throws IoError naming it on failure.
 std::filesystem::path ensure_directory(const std::string& dir);
 

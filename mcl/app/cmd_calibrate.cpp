@@ -16,8 +16,9 @@
 #include <vector>
 
 #include "app_util.hpp"
+#include "cli_errors.hpp"
 #include "commands.hpp"
-#include "pgmcl/io/cli_errors.hpp"
+#include "pgmcl/io/values.hpp"
 #include "pgmcl/sims/calibration.hpp"
 
 namespace pgmcl::app {

@@ -8,8 +8,9 @@
 
 #include "app_util.hpp"
 #include "commands.hpp"
-#include "pgmcl/io/evaluation.hpp"
-#include "pgmcl/io/metrics.hpp"
+#include "pgmcl/eval/evaluation.hpp"
+#include "pgmcl/eval/metrics.hpp"
+#include "pgmcl/eval/relations_error.hpp"
 #include "pgmcl/io/relations.hpp"
 #include "pgmcl/io/tum.hpp"
 

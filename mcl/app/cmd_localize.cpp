@@ -13,9 +13,9 @@
 #include "app_util.hpp"
 #include "commands.hpp"
 #include "localize_pipeline.hpp"
-#include "pgmcl/io/config_yaml.hpp"
+#include "pgmcl/config/config_yaml.hpp"
 #include "pgmcl/io/relations.hpp"
-#include "pgmcl/maps/map_io.hpp"
+#include "pgmcl/map_io/map_io.hpp"
 
 namespace pgmcl::app {
 namespace {

@@ -9,10 +9,11 @@
 #include <vector>
 
 #include "app_util.hpp"
+#include "cli_errors.hpp"
 #include "commands.hpp"
 #include "pgmcl/io/carmen.hpp"
-#include "pgmcl/io/cli_errors.hpp"
-#include "pgmcl/maps/map_io.hpp"
+#include "pgmcl/io/values.hpp"
+#include "pgmcl/map_io/map_io.hpp"
 #include "pgmcl/maps/occupancy_mapping.hpp"
 
 namespace pgmcl::app {

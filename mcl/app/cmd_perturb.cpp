@@ -29,13 +29,14 @@
 #include <vector>
 
 #include "app_util.hpp"
+#include "cli_errors.hpp"
 #include "commands.hpp"
 #include "perturb_random.hpp"
 #include "perturb_settings.hpp"
 #include "pgmcl/io/carmen.hpp"
 #include "pgmcl/io/carmen_writer.hpp"
-#include "pgmcl/io/cli_errors.hpp"
 #include "pgmcl/io/tum.hpp"
+#include "pgmcl/io/values.hpp"
 
 namespace pgmcl::app {
 namespace {

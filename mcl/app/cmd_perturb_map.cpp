@@ -20,11 +20,12 @@
 #include <vector>
 
 #include "app_util.hpp"
+#include "cli_errors.hpp"
 #include "commands.hpp"
 #include "map_perturbation.hpp"
 #include "perturb_random.hpp"
-#include "pgmcl/io/cli_errors.hpp"
-#include "pgmcl/maps/map_io.hpp"
+#include "pgmcl/io/values.hpp"
+#include "pgmcl/map_io/map_io.hpp"
 
 namespace pgmcl::app {
 namespace {

@@ -1,5 +1,5 @@
 /// pgmcl run: one experiment file = map + data (a log, or a scenario to simulate) + filter
-/// (schema: mcl/io/include/pgmcl/io/experiment_yaml.hpp). A simulated log and its truth
+/// (schema: mcl/io/include/pgmcl/config/experiment_yaml.hpp). A simulated log and its truth
 /// are kept in the output directory (sim.log.gz, truth.tum) so the run can be replayed.
 
 #include <cstdio>
@@ -9,15 +9,16 @@
 #include <vector>
 
 #include "app_util.hpp"
+#include "cli_errors.hpp"
 #include "commands.hpp"
 #include "localize_pipeline.hpp"
-#include "pgmcl/io/cli_errors.hpp"
-#include "pgmcl/io/experiment_yaml.hpp"
+#include "pgmcl/config/experiment_yaml.hpp"
+#include "pgmcl/config/scenario_yaml.hpp"
 #include "pgmcl/io/relations.hpp"
-#include "pgmcl/io/scenario_yaml.hpp"
 #include "pgmcl/io/sim_log_io.hpp"
 #include "pgmcl/io/tum.hpp"
-#include "pgmcl/maps/map_io.hpp"
+#include "pgmcl/io/values.hpp"
+#include "pgmcl/map_io/map_io.hpp"
 #include "pgmcl/sims/scenario.hpp"
 
 namespace pgmcl::app {

@@ -9,7 +9,7 @@
 
 #include "app_util.hpp"
 #include "commands.hpp"
-#include "pgmcl/io/scenario_yaml.hpp"
+#include "pgmcl/config/scenario_yaml.hpp"
 #include "pgmcl/io/sim_log_io.hpp"
 #include "pgmcl/sims/scenario.hpp"
 

@@ -10,16 +10,17 @@
 #include <stdexcept>
 
 #include "app_util.hpp"
-#include "pgmcl/io/cli_errors.hpp"
-#include "pgmcl/io/config_yaml.hpp"
+#include "cli_errors.hpp"
+#include "pgmcl/config/config_yaml.hpp"
+#include "pgmcl/eval/evaluation.hpp"
 #include "pgmcl/io/errors.hpp"
-#include "pgmcl/io/evaluation.hpp"
 #include "pgmcl/io/odometry_pairing.hpp"
-#include "pgmcl/io/plot.hpp"
-#include "pgmcl/io/png_overlay.hpp"
-#include "pgmcl/io/progress.hpp"
 #include "pgmcl/io/tum.hpp"
+#include "pgmcl/io/values.hpp"
 #include "pgmcl/mcl/localizer.hpp"
+#include "plot.hpp"
+#include "png_overlay.hpp"
+#include "progress.hpp"
 
 namespace pgmcl::app {
 namespace {
@@ -38,8 +39,8 @@ Eigen::Matrix3d belief_covariance(const InitialBelief& b) {
 
 /// Position and heading error over time, one panel each.
 void write_error_png(const std::string& path, const io::AteResult& ate, double t0) {
-  io::PlotSeries pos{"position error", {}, {}, io::colors::kRed};
-  io::PlotSeries head{"heading error", {}, {}, io::colors::kBlue};
+  PlotSeries pos{"position error", {}, {}, colors::kRed};
+  PlotSeries head{"heading error", {}, {}, colors::kBlue};
   for (const io::PoseError& e : ate.errors) {
     pos.x.push_back(e.stamp - t0);
     pos.y.push_back(e.translation);
@@ -49,13 +50,13 @@ void write_error_png(const std::string& path, const io::AteResult& ate, double t
   char title[160];
   std::snprintf(title, sizeof title, "Position error (ATE RMSE %.3f m, max %.3f m)",
                 ate.translation.rms, ate.translation.max);
-  io::LinePlot p1{title, "time since first scan [s]", "metres", {pos}, 1000, 340, true};
+  LinePlot p1{title, "time since first scan [s]", "metres", {pos}, 1000, 340, true};
   std::snprintf(title, sizeof title, "Heading error (RMSE %.2f deg)", ate.heading.rms);
-  io::LinePlot p2{title, "time since first scan [s]", "degrees", {head}, 1000, 340, true};
-  io::Canvas c(1000, 680);
-  c.blit(io::render_line_plot(p1), 0, 0);
-  c.blit(io::render_line_plot(p2), 0, 340);
-  io::write_png(c, path);
+  LinePlot p2{title, "time since first scan [s]", "degrees", {head}, 1000, 340, true};
+  Canvas c(1000, 680);
+  c.blit(render_line_plot(p1), 0, 0);
+  c.blit(render_line_plot(p2), 0, 340);
+  write_png(c, path);
 }
 
 /// One row of updates.csv: what the filter said about itself at each update.
@@ -206,7 +207,7 @@ io::RunMetrics run_localization(const LocalizeJob& job) {
   rows.reserve(usable);
   io::Trajectory trajectory;
   trajectory.reserve(usable);
-  io::Progress progress = io::Progress::on_stderr("localize", usable, job.quiet);
+  Progress progress = Progress::on_stderr("localize", usable, job.quiet);
   std::size_t done = 0, out_of_order = 0, unpaired = 0;
   double last_stamp = -std::numeric_limits<double>::infinity();
   for (const io::PairedScan& p : paired.scans) {
@@ -286,8 +287,8 @@ io::RunMetrics run_localization(const LocalizeJob& job) {
   const ParticlesView pv = loc.particles();
   const std::size_t stride = pv.size() / kMaxDrawnParticles + 1;
   for (std::size_t i = 0; i < pv.size(); i += stride) cloud.push_back(pv.global_pose(i));
-  io::write_overlay_png((dir / "overlay.png").string(), *job.map,
-                        io::OverlayData{truth_path, est, cloud, job.title});
+  write_overlay_png((dir / "overlay.png").string(), *job.map,
+                    OverlayData{truth_path, est, cloud, job.title});
   if (ate && !ate->errors.empty()) {
     write_error_png((dir / "error.png").string(), *ate, trajectory.front().stamp);
   }

@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "pgmcl/eval/metrics.hpp"
 #include "pgmcl/io/carmen.hpp"
-#include "pgmcl/io/metrics.hpp"
 #include "pgmcl/io/relations.hpp"
 #include "pgmcl/io/trajectory.hpp"
 #include "pgmcl/maps/occupancy_grid.hpp"

@@ -6,8 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "cli_errors.hpp"
 #include "commands.hpp"
-#include "pgmcl/io/cli_errors.hpp"
+#include "pgmcl/io/values.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -24,7 +25,7 @@ int main(int argc, char** argv) {
       pgmcl::app::add_eval_command(app),      pgmcl::app::add_kernel_command(app),
       pgmcl::app::add_calibrate_command(app),
   };
-  return pgmcl::io::run_reporting_errors(
+  return pgmcl::app::run_reporting_errors(
       [&]() -> int {
         try {
           app.parse(argc, argv);
@@ -43,16 +44,16 @@ int main(int argc, char** argv) {
             for (const auto& c : commands) names += (names.empty() ? "" : ", ") + c.sub->get_name();
             std::cerr << "pgmcl: error: unknown command '" << argv[1] << "' (commands: " << names
                       << ")\n";
-            return pgmcl::io::kExitUsage;
+            return pgmcl::app::kExitUsage;
           }
           std::cerr << "pgmcl: error: " << e.what() << "\n"
                     << "Run 'pgmcl --help' or 'pgmcl <command> --help' for usage.\n";
-          return pgmcl::io::kExitUsage;
+          return pgmcl::app::kExitUsage;
         }
         for (const auto& c : commands) {
           if (c.sub->parsed()) return c.run();
         }
-        return pgmcl::io::kExitUsage;  // unreachable: require_subcommand(1)
+        return pgmcl::app::kExitUsage;  // unreachable: require_subcommand(1)
       },
       std::cerr);
 }

@@ -4,8 +4,8 @@
 
 #include <cstddef>
 
+#include "pgmcl/common/random.hpp"
 #include "pgmcl/maps/occupancy_grid.hpp"
-#include "pgmcl/mcl/random.hpp"
 
 namespace pgmcl::app {
 

@@ -20,10 +20,10 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "pgmcl/common/motion_model.hpp"
+#include "pgmcl/common/random.hpp"
+#include "pgmcl/common/se2.hpp"
 #include "pgmcl/io/trajectory.hpp"
-#include "pgmcl/maps/se2.hpp"
-#include "pgmcl/mcl/motion_model.hpp"
-#include "pgmcl/mcl/random.hpp"
 
 namespace pgmcl::app {
 

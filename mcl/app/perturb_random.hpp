@@ -9,7 +9,7 @@
 
 #include <cstdint>
 
-#include "pgmcl/mcl/random.hpp"
+#include "pgmcl/common/random.hpp"
 
 namespace pgmcl::app {
 

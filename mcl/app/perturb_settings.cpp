@@ -5,7 +5,8 @@
 #include <vector>
 
 #include "app_util.hpp"
-#include "pgmcl/io/cli_errors.hpp"
+#include "cli_errors.hpp"
+#include "pgmcl/io/values.hpp"
 
 namespace pgmcl::app {
 namespace {

@@ -6,8 +6,8 @@
 #include <limits>
 #include <vector>
 
+#include "pgmcl/common/random.hpp"
 #include "pgmcl/io/trajectory.hpp"
-#include "pgmcl/mcl/random.hpp"
 
 namespace pgmcl::app {
 

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "grid_key.hpp"
-#include "pgmcl/mcl/random.hpp"
+#include "pgmcl/common/random.hpp"
 #include "weighted_moments.hpp"
 
 namespace pgmcl {

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <numbers>
 
-#include "pgmcl/maps/se2.hpp"
+#include "pgmcl/common/se2.hpp"
 
 namespace pgmcl::detail {
 

@@ -16,8 +16,8 @@
 #include <span>
 #include <vector>
 
+#include "pgmcl/common/laser_scan.hpp"
 #include "pgmcl/maps/likelihood_field.hpp"
-#include "pgmcl/mcl/laser_scan.hpp"
 #include "pgmcl/mcl/localizer_config.hpp"
 #include "pgmcl/mcl/measurement_model.hpp"
 #include "pgmcl/mcl/pose_search.hpp"

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "grid_key.hpp"
-#include "pgmcl/mcl/random.hpp"
+#include "pgmcl/common/random.hpp"
 
 namespace pgmcl {
 namespace {

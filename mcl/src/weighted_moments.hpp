@@ -10,7 +10,7 @@
 #include <array>
 #include <cmath>
 
-#include "pgmcl/maps/se2.hpp"
+#include "pgmcl/common/se2.hpp"
 
 namespace pgmcl::detail {
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "pgmcl/io/scenario_yaml.hpp"
+#include "pgmcl/config/scenario_yaml.hpp"
 #include "pgmcl/mcl/clustering.hpp"
 #include "pgmcl/mcl/localizer.hpp"
 #include "pgmcl/sims/scenario.hpp"

@@ -20,8 +20,8 @@
 #include <vector>
 
 #include "fuzz_util.hpp"
-#include "pgmcl/io/cli_errors.hpp"
-#include "pgmcl/io/config_yaml.hpp"
+#include "pgmcl/config/config_yaml.hpp"
+#include "pgmcl/io/values.hpp"
 #include "pgmcl/mcl/localizer.hpp"
 
 namespace {

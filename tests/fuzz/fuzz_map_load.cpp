@@ -10,7 +10,7 @@
 
 #include "fuzz_util.hpp"
 #include "map_invariants.hpp"
-#include "pgmcl/maps/map_io.hpp"
+#include "pgmcl/map_io/map_io.hpp"
 
 namespace {
 

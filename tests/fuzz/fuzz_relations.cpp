@@ -10,6 +10,7 @@
 #include <string>
 
 #include "fuzz_util.hpp"
+#include "pgmcl/eval/relations_error.hpp"
 #include "pgmcl/io/errors.hpp"
 #include "pgmcl/io/relations.hpp"
 

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "fuzz_util.hpp"
-#include "pgmcl/maps/map_io.hpp"
+#include "pgmcl/map_io/map_io.hpp"
 
 namespace pgmcl::fuzz {
 

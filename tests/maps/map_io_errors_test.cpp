@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "map_io_test_util.hpp"
-#include "pgmcl/maps/map_io.hpp"
+#include "pgmcl/map_io/map_io.hpp"
 
 namespace pgmcl::maps {
 namespace {

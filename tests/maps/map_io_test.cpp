@@ -2,7 +2,7 @@
 // maps; see data/README.md). The nav2 test map is checked cell by cell against the grid
 // nav2's own loader test expects.
 
-#include "pgmcl/maps/map_io.hpp"
+#include "pgmcl/map_io/map_io.hpp"
 
 #include <gtest/gtest.h>
 

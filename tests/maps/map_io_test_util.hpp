@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "pgmcl/maps/map_io.hpp"
+#include "pgmcl/map_io/map_io.hpp"
 #include "temp_files.hpp"
 
 namespace pgmcl::maps::test {

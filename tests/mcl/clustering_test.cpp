@@ -9,8 +9,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "pgmcl/common/random.hpp"
 #include "pgmcl/mcl/pose_estimate.hpp"
-#include "pgmcl/mcl/random.hpp"
 
 namespace pgmcl {
 namespace {

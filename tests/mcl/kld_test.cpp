@@ -7,9 +7,9 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "pgmcl/maps/se2.hpp"
+#include "pgmcl/common/random.hpp"
+#include "pgmcl/common/se2.hpp"
 #include "pgmcl/mcl/kld_sampling.hpp"
-#include "pgmcl/mcl/random.hpp"
 
 namespace pgmcl {
 namespace {

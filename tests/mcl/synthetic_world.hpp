@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "drive_path.hpp"
+#include "pgmcl/common/laser_scan.hpp"
+#include "pgmcl/common/motion_model.hpp"
+#include "pgmcl/common/random.hpp"
 #include "pgmcl/maps/occupancy_grid.hpp"
-#include "pgmcl/mcl/laser_scan.hpp"
-#include "pgmcl/mcl/motion_model.hpp"
-#include "pgmcl/mcl/random.hpp"
 
 namespace pgmcl::test {
 

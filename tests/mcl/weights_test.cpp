@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "pgmcl/mcl/random.hpp"
+#include "pgmcl/common/random.hpp"
 
 namespace pgmcl {
 namespace {

@@ -1,6 +1,6 @@
 #pragma once
 // Test-only driving for the Localizer stress tests: turn-then-drive paths through
-// waypoints and perturbed odometry (tests/common/drive_path.hpp), and a loop that feeds scans from
+// waypoints and perturbed odometry (tests/support/drive_path.hpp), and a loop that feeds scans from
 // stress_world.hpp's Scanner and records the estimate's error against the truth.
 
 #include <algorithm>
@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "drive_path.hpp"
+#include "pgmcl/common/motion_model.hpp"
 #include "pgmcl/mcl/localizer.hpp"
-#include "pgmcl/mcl/motion_model.hpp"
 #include "stress_world.hpp"
 
 namespace pgmcl::stress {

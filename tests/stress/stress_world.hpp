@@ -10,9 +10,9 @@
 #include <utility>
 #include <vector>
 
+#include "pgmcl/common/laser_scan.hpp"
+#include "pgmcl/common/random.hpp"
 #include "pgmcl/maps/occupancy_grid.hpp"
-#include "pgmcl/mcl/laser_scan.hpp"
-#include "pgmcl/mcl/random.hpp"
 #include "pgmcl/sims/ray_caster.hpp"
 #include "pgmcl/sims/sensor_profile.hpp"
 

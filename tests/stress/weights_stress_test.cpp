@@ -11,8 +11,8 @@
 #include <numbers>
 #include <vector>
 
+#include "pgmcl/common/random.hpp"
 #include "pgmcl/mcl/pose_estimate.hpp"
-#include "pgmcl/mcl/random.hpp"
 #include "pgmcl/mcl/weights.hpp"
 
 namespace pgmcl {

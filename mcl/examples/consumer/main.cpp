@@ -4,13 +4,12 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
-#include <string>
-#include <vector>
-
-#include <pgmcl/maps/map_io.hpp>
+#include <pgmcl/map_io/map_io.hpp>
 #include <pgmcl/mcl/localizer.hpp>
 #include <pgmcl/sims/ray_caster.hpp>
 #include <pgmcl/sims/sensor_profile.hpp>
+#include <string>
+#include <vector>
 
 int main(int argc, char** argv) try {
   if (argc != 2) {

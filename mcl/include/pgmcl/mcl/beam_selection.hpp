@@ -15,7 +15,7 @@
 #include <span>
 #include <vector>
 
-#include "pgmcl/mcl/laser_scan.hpp"
+#include "pgmcl/common/laser_scan.hpp"
 
 namespace pgmcl {
 

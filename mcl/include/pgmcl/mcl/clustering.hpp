@@ -16,7 +16,7 @@
 #include <span>
 #include <vector>
 
-#include "pgmcl/maps/se2.hpp"
+#include "pgmcl/common/se2.hpp"
 
 namespace pgmcl {
 

@@ -24,15 +24,15 @@
 #include <span>
 #include <vector>
 
+#include "pgmcl/common/laser_scan.hpp"
+#include "pgmcl/common/random.hpp"
 #include "pgmcl/maps/likelihood_field.hpp"
 #include "pgmcl/maps/occupancy_grid.hpp"
 #include "pgmcl/mcl/clustering.hpp"
 #include "pgmcl/mcl/kld_sampling.hpp"
-#include "pgmcl/mcl/laser_scan.hpp"
 #include "pgmcl/mcl/localizer_config.hpp"
 #include "pgmcl/mcl/measurement_model.hpp"
 #include "pgmcl/mcl/particles.hpp"
-#include "pgmcl/mcl/random.hpp"
 #include "pgmcl/mcl/update_result.hpp"
 
 namespace pgmcl {

@@ -7,9 +7,9 @@
 #include <cstdint>
 #include <numbers>
 
+#include "pgmcl/common/motion_model.hpp"
 #include "pgmcl/maps/likelihood_field.hpp"
 #include "pgmcl/mcl/beam_selection.hpp"
-#include "pgmcl/mcl/motion_model.hpp"
 #include "pgmcl/mcl/pose_search.hpp"
 
 namespace pgmcl {

@@ -17,8 +17,8 @@
 #include <span>
 #include <vector>
 
+#include "pgmcl/common/laser_scan.hpp"
 #include "pgmcl/maps/likelihood_field.hpp"
-#include "pgmcl/mcl/laser_scan.hpp"
 
 namespace pgmcl {
 

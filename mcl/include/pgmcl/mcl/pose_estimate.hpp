@@ -4,7 +4,7 @@
 #include <Eigen/Core>
 #include <span>
 
-#include "pgmcl/maps/se2.hpp"
+#include "pgmcl/common/se2.hpp"
 
 namespace pgmcl {
 

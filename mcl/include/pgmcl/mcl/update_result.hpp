@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "pgmcl/maps/se2.hpp"
+#include "pgmcl/common/se2.hpp"
 
 namespace pgmcl {
 

@@ -5,7 +5,7 @@
 
 #include <numbers>
 
-#include "pgmcl/mcl/random.hpp"
+#include "pgmcl/common/random.hpp"
 #include "pgmcl/sensor_model/paper_constants.hpp"
 #include "pgmcl/sims/scene.hpp"
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "pgmcl/maps/se2.hpp"
+#include "pgmcl/common/se2.hpp"
 
 namespace pgmcl::sims {
 

@@ -11,8 +11,8 @@
 #include <span>
 #include <vector>
 
+#include "pgmcl/common/se2.hpp"
 #include "pgmcl/maps/occupancy_grid.hpp"
-#include "pgmcl/maps/se2.hpp"
 
 namespace pgmcl::sims {
 

@@ -6,10 +6,10 @@
 #include <optional>
 #include <vector>
 
+#include "pgmcl/common/motion_model.hpp"
+#include "pgmcl/common/random.hpp"
+#include "pgmcl/common/se2.hpp"
 #include "pgmcl/maps/occupancy_grid.hpp"
-#include "pgmcl/maps/se2.hpp"
-#include "pgmcl/mcl/motion_model.hpp"
-#include "pgmcl/mcl/random.hpp"
 #include "pgmcl/sims/obstacles.hpp"
 
 namespace pgmcl::sims {

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "pgmcl/common/laser_scan.hpp"
+#include "pgmcl/common/se2.hpp"
 #include "pgmcl/maps/occupancy_grid.hpp"
-#include "pgmcl/maps/se2.hpp"
-#include "pgmcl/mcl/laser_scan.hpp"
 #include "pgmcl/sims/beam_noise.hpp"
 #include "pgmcl/sims/obstacles.hpp"
 #include "pgmcl/sims/ray_caster.hpp"

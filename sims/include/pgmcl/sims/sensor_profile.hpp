@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "pgmcl/maps/se2.hpp"
-#include "pgmcl/mcl/laser_scan.hpp"
+#include "pgmcl/common/laser_scan.hpp"
+#include "pgmcl/common/se2.hpp"
 #include "pgmcl/sims/ray_caster.hpp"
 
 namespace pgmcl::sims {

@@ -28,9 +28,9 @@
 #include <string_view>
 #include <vector>
 
+#include "pgmcl/common/laser_scan.hpp"
+#include "pgmcl/common/se2.hpp"
 #include "pgmcl/io/trajectory.hpp"
-#include "pgmcl/maps/se2.hpp"
-#include "pgmcl/mcl/laser_scan.hpp"
 
 namespace pgmcl::io {
 

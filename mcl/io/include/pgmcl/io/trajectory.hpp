@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "pgmcl/maps/se2.hpp"
+#include "pgmcl/common/se2.hpp"
 
 namespace pgmcl::io {
 

@@ -1,0 +1,74 @@
+#include "pgmcl/eval/evaluation.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <span>
+
+namespace pgmcl::io {
+namespace {
+
+std::optional<Pose2> truth_at(const Trajectory& truth, double stamp, const AteOptions& opt) {
+  if (opt.association == Association::kInterpolate) {
+    if (const auto p = interpolate_at(truth, stamp, opt.max_gap)) return p;
+  }
+  if (const auto i = nearest_index(truth, stamp, opt.tolerance)) return truth[*i].pose;
+  return std::nullopt;
+}
+
+}  // namespace
+
+AteResult evaluate_ate(const Trajectory& estimate, const Trajectory& truth, const AteOptions& opt) {
+  Trajectory est = estimate;
+  Trajectory ref = truth;
+  sort_by_stamp(est);
+  sort_by_stamp(ref);
+  AteResult res;
+  res.estimated = est.size();
+  constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+  std::vector<double> trans, rot;
+  std::vector<Pose2> matched_truth;
+  for (const StampedPose& e : est) {
+    const auto t = truth_at(ref, e.stamp + opt.time_offset, opt);
+    if (!t) continue;
+    matched_truth.push_back(*t);
+    const PoseError pe{e.stamp, std::hypot(e.pose.x - t->x, e.pose.y - t->y),
+                       std::abs(wrap_angle(e.pose.theta - t->theta)) * kRadToDeg};
+    res.errors.push_back(pe);
+    trans.push_back(pe.translation);
+    rot.push_back(pe.rotation_deg);
+  }
+  res.matched = res.errors.size();
+  res.unmatched = res.estimated - res.matched;
+  res.translation = error_stats(trans);
+  res.heading = error_stats(rot);
+
+  if (!res.errors.empty()) {
+    // Scan backwards for the last pose outside the thresholds.
+    std::size_t first_good = res.errors.size();
+    while (first_good > 0) {
+      const PoseError& pe = res.errors[first_good - 1];
+      if (pe.translation > opt.converged_translation ||
+          pe.rotation_deg > opt.converged_rotation_deg) {
+        break;
+      }
+      --first_good;
+    }
+    if (first_good < res.errors.size()) {
+      res.converged_after_s =
+          first_good == 0 ? 0.0 : res.errors[first_good].stamp - est.front().stamp;
+    }
+    std::size_t lock = res.errors.size();
+    while (lock > 0 && res.errors[lock - 1].translation <= opt.lost_translation) --lock;
+    if (lock < res.errors.size()) {
+      res.lock_on_s = lock == 0 ? 0.0 : res.errors[lock].stamp - est.front().stamp;
+      for (std::size_t i = 1; i <= lock; ++i)
+        res.lock_on_travel_m += std::hypot(matched_truth[i].x - matched_truth[i - 1].x,
+                                           matched_truth[i].y - matched_truth[i - 1].y);
+      res.post_lock_translation = error_stats(std::span<const double>(trans).subspan(lock));
+      res.post_lock_heading = error_stats(std::span<const double>(rot).subspan(lock));
+    }
+  }
+  return res;
+}
+
+}  // namespace pgmcl::io

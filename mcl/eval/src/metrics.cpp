@@ -1,0 +1,159 @@
+#include "pgmcl/eval/metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <utility>
+
+#include "pgmcl/io/errors.hpp"
+
+namespace pgmcl::io {
+namespace {
+
+std::string num(double v) {
+  if (std::isnan(v)) return ".nan";
+  if (std::isinf(v)) return v > 0 ? ".inf" : "-.inf";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+/// Rows of (key, value text, unit) shared by the YAML and the table.
+std::vector<std::pair<std::string, std::string>> rows(const RunMetrics& m, bool run_figures) {
+  std::vector<std::pair<std::string, std::string>> r;
+  if (run_figures) {
+    r = {
+        {"updates", std::to_string(m.updates)},
+        {"skipped_updates", std::to_string(m.skipped_updates)},
+        {"update_ms_mean", num(m.update_ms_mean)},
+        {"update_ms_p95", num(m.update_ms_p95)},
+        {"wall_s", num(m.wall_s)},
+        {"particles_mean", num(m.particles_mean)},
+        {"particles_min", std::to_string(m.particles_min)},
+        {"particles_max", std::to_string(m.particles_max)},
+        {"beams_used_mean", num(m.beams_used_mean)},
+        {"fit_mean", num(m.fit_mean)},
+        {"converged_fraction", num(m.converged_fraction)},
+    };
+  }
+  if (m.accuracy) {
+    const AccuracyMetrics& a = *m.accuracy;
+    r.emplace_back("ate_rmse_m", num(a.ate_rmse_m));
+    r.emplace_back("ate_max_m", num(a.ate_max_m));
+    r.emplace_back("heading_rmse_deg", num(a.heading_rmse_deg));
+    r.emplace_back("converged_after_s",
+                   a.converged_after_s ? num(*a.converged_after_s) : std::string("null"));
+    r.emplace_back("truth_matched", std::to_string(a.matched));
+    r.emplace_back("lock_on_s", a.lock_on_s ? num(*a.lock_on_s) : std::string("null"));
+    r.emplace_back("lock_on_travel_m", num(a.lock_on_travel_m));
+    r.emplace_back("post_lock_ate_rmse_m", num(a.post_lock_ate_rmse_m));
+    r.emplace_back("post_lock_ate_max_m", num(a.post_lock_ate_max_m));
+    r.emplace_back("post_lock_heading_rmse_deg", num(a.post_lock_heading_rmse_deg));
+    if (run_figures) {
+      r.emplace_back("false_converged", std::to_string(a.false_converged));
+      r.emplace_back("false_converged_run", std::to_string(a.false_converged_run));
+    }
+  }
+  if (m.relations) {
+    r.emplace_back("relations_trans_m", num(m.relations->trans_m));
+    r.emplace_back("relations_rot_deg", num(m.relations->rot_deg));
+    r.emplace_back("relations_trans_std_m", num(m.relations->trans_std_m));
+    r.emplace_back("relations_rot_std_deg", num(m.relations->rot_std_deg));
+    r.emplace_back("relations_used", std::to_string(m.relations->used));
+  }
+  return r;
+}
+
+}  // namespace
+
+AccuracyMetrics accuracy_metrics(const AteResult& ate) {
+  AccuracyMetrics a;
+  a.ate_rmse_m = ate.translation.rms;
+  a.ate_max_m = ate.translation.max;
+  a.heading_rmse_deg = ate.heading.rms;
+  a.converged_after_s = ate.converged_after_s;
+  a.matched = ate.matched;
+  a.lock_on_s = ate.lock_on_s;
+  a.lock_on_travel_m = ate.lock_on_travel_m;
+  a.post_lock_ate_rmse_m = ate.post_lock_translation.rms;
+  a.post_lock_ate_max_m = ate.post_lock_translation.max;
+  a.post_lock_heading_rmse_deg = ate.post_lock_heading.rms;
+  return a;
+}
+
+RelationsMetrics relations_metrics(const RelationResult& rel) {
+  return {rel.translation.mean, rel.rotation.mean, rel.matched, rel.translation.stddev,
+          rel.rotation.stddev};
+}
+
+void MetricsAccumulator::add_update(double update_ms, std::size_t particles, std::size_t beams_used,
+                                    double fit, bool converged) {
+  particles_min_ = update_ms_.empty() ? particles : std::min(particles_min_, particles);
+  particles_max_ = std::max(particles_max_, particles);
+  update_ms_.push_back(update_ms);
+  particles_sum_ += static_cast<double>(particles);
+  beams_sum_ += static_cast<double>(beams_used);
+  fit_sum_ += fit;
+  converged_ += converged ? 1 : 0;
+}
+
+RunMetrics MetricsAccumulator::summarise(double wall_s) const {
+  RunMetrics m;
+  m.updates = update_ms_.size();
+  m.skipped_updates = skipped_;
+  m.wall_s = wall_s;
+  if (!update_ms_.empty()) {
+    const double n = static_cast<double>(update_ms_.size());
+    double sum = 0.0;
+    for (const double v : update_ms_) sum += v;
+    m.update_ms_mean = sum / n;
+    m.update_ms_p95 = percentile(update_ms_, 95.0);
+    m.particles_mean = particles_sum_ / n;
+    m.particles_min = particles_min_;
+    m.particles_max = particles_max_;
+    m.beams_used_mean = beams_sum_ / n;
+    m.fit_mean = fit_sum_ / n;
+    m.converged_fraction = static_cast<double>(converged_) / n;
+  }
+  return m;
+}
+
+double percentile(std::vector<double> values, double p) {
+  if (values.empty()) return 0.0;
+  p = std::clamp(p, 0.0, 100.0);
+  // Nearest rank: the smallest value with at least p % of the data at or below it.
+  const auto n = values.size();
+  auto rank = static_cast<std::size_t>(std::ceil(p / 100.0 * static_cast<double>(n)));
+  rank = std::clamp<std::size_t>(rank, 1, n);
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(rank - 1),
+                   values.end());
+  return values[rank - 1];
+}
+
+std::string metrics_yaml(const RunMetrics& m, bool run_figures) {
+  std::string out = "# pgmcl run metrics\n";
+  for (const auto& [key, value] : rows(m, run_figures)) out += key + ": " + value + "\n";
+  return out;
+}
+
+void write_metrics_yaml(const std::string& path, const RunMetrics& m, bool run_figures) {
+  std::ofstream f(path);
+  if (!f) throw IoError(path + ": cannot create file");
+  f << metrics_yaml(m, run_figures);
+  f.close();
+  if (!f) throw IoError(path + ": write failed");
+}
+
+std::string metrics_table(const RunMetrics& m, bool run_figures) {
+  std::size_t w = 0;
+  const auto r = rows(m, run_figures);
+  for (const auto& row : r) w = std::max(w, row.first.size());
+  std::string out;
+  for (const auto& [key, value] : r) {
+    out += "  " + key + std::string(w - key.size() + 2, ' ') + value + "\n";
+  }
+  return out;
+}
+
+}  // namespace pgmcl::io

@@ -1,0 +1,90 @@
+// `pgmcl eval`: ATE and relations figures against exact oracles.
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "cli_test_util.hpp"
+#include "pgmcl/io/tum.hpp"
+
+namespace pgmcl {
+namespace {
+
+using cli_test::run_pgmcl;
+using cli_test::RunResult;
+using cli_test::TempDir;
+
+io::Trajectory circle(int n) {
+  io::Trajectory t;
+  for (int i = 0; i < n; ++i) {
+    const double a = 0.05 * i;
+    t.push_back({10.0 + i * 0.5, {3.0 * std::cos(a), 3.0 * std::sin(a), wrap_angle(a + 1.5708)}});
+  }
+  return t;
+}
+
+TEST(CliEval, ShiftedEstimateGivesTheShiftAsAteAndZeroRelationsError) {
+  TempDir dir("cli_eval_shift");
+  const io::Trajectory truth = circle(100);
+  io::Trajectory est = truth;
+  for (auto& p : est) {
+    p.pose.x += 0.06;
+    p.pose.y -= 0.08;  // |shift| = 0.1 m, the same for every pose
+  }
+  est[10].pose.theta = wrap_angle(est[10].pose.theta + 0.1);  // one heading error of 0.1 rad
+  io::write_tum(dir.file("truth.tum"), truth);
+  io::write_tum(dir.file("est.tum"), est);
+  // Relations between truth poses, stamped +100 s (needs --time-offset 100).
+  std::string rel;
+  for (int i = 20; i + 5 < 100; i += 5) {
+    const Pose2 d = truth[i].pose.between(truth[i + 5].pose);
+    char line[256];
+    std::snprintf(line, sizeof line, "%.6f %.6f %.17g %.17g 0 0 0 %.17g\n", truth[i].stamp + 100,
+                  truth[i + 5].stamp + 100, d.x, d.y, d.theta);
+    rel += line;
+  }
+  cli_test::write_text(dir.file("r.relations"), rel);
+
+  const RunResult r = run_pgmcl(
+      "eval --estimate est.tum --truth truth.tum --relations r.relations --time-offset 100 "
+      "--out out/eval.yaml",
+      dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const YAML::Node y = YAML::LoadFile(dir.file("out/eval.yaml"));
+  EXPECT_NEAR(y["ate_rmse_m"].as<double>(), 0.1, 1e-6);
+  EXPECT_NEAR(y["ate_max_m"].as<double>(), 0.1, 1e-6);
+  EXPECT_NEAR(y["heading_rmse_deg"].as<double>(), 0.1 * 180 / M_PI / std::sqrt(100.0), 1e-4);
+  EXPECT_EQ(y["truth_matched"].as<int>(), 100);
+  EXPECT_EQ(y["relations_used"].as<int>(), 15);
+  EXPECT_NEAR(y["relations_trans_m"].as<double>(), 0.0, 1e-6);
+  EXPECT_NEAR(y["relations_rot_deg"].as<double>(), 0.0, 1e-4);
+  EXPECT_FALSE(y["updates"]);  // no filter figures for a trajectory file
+  EXPECT_NE(r.out.find("ate_rmse_m"), std::string::npos);
+}
+
+TEST(CliEval, BadTrajectoryLineNamesFileLineAndField) {
+  TempDir dir("cli_eval_bad");
+  io::write_tum(dir.file("truth.tum"), circle(10));
+  cli_test::write_text(dir.file("est.tum"), "# header\n1.0 0 0 0 0 0 0 1\n2.0 0 zero 0 0 0 0 1\n");
+  const RunResult r = run_pgmcl("eval --estimate est.tum --truth truth.tum", dir);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("pgmcl: error: "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("est.tum:3"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("ty"), std::string::npos) << r.err;
+}
+
+TEST(CliEval, NoOverlapInTimeIsAnError) {
+  TempDir dir("cli_eval_overlap");
+  io::Trajectory late = circle(10);
+  for (auto& p : late) p.stamp += 1000.0;
+  io::write_tum(dir.file("truth.tum"), circle(10));
+  io::write_tum(dir.file("est.tum"), late);
+  const RunResult r = run_pgmcl("eval --estimate est.tum --truth truth.tum", dir);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("no estimate pose matched"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace pgmcl

@@ -69,15 +69,15 @@ Dataset load_log_dataset(const std::string& name, const LogSource& src) {
     const io::CarmenScan& s = *scans[k];
     const io::CarmenScan& t = *truth_scans[k];
     // The pair of csail logs holds the same scans in the same order; their stamps agree.
-    if (std::abs(s.scan.stamp - t.scan.stamp) > 0.5)
+    if (std::abs(s.stamp - t.stamp) > 0.5)
       throw std::runtime_error("scan " + std::to_string(k) + ": stamp " +
-                               std::to_string(s.scan.stamp) + " in " + src.log + " but " +
-                               std::to_string(t.scan.stamp) + " in " + src.truth_log);
+                               std::to_string(s.stamp) + " in " + src.log + " but " +
+                               std::to_string(t.stamp) + " in " + src.truth_log);
     d.scans.push_back(s.scan);
     d.odometry.push_back(s.odom_pose);
     // Robot pose = laser pose composed with the inverse mounting (io::scan_truth's rule).
     d.truth.push_back(t.laser_pose.compose(t.scan.sensor_pose.inverse()));
-    last = std::max(last, s.scan.stamp);
+    last = std::max(last, s.stamp);
     d.stamps.push_back(last);
   }
   d.log_beams = d.scans.front().ranges.size();

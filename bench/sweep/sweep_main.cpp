@@ -96,7 +96,7 @@ RunResult run_one(const pb::Dataset& d, std::shared_ptr<const pgmcl::maps::Likel
     const double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     total_ms += ms;
-    if (u.measured) {
+    if (u.measured()) {
       update_ms.push_back(ms);
       particles += static_cast<double>(u.particles);
       beams += static_cast<double>(u.beams_used);

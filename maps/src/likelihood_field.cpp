@@ -161,7 +161,6 @@ LikelihoodField::LikelihoodField(const OccupancyGrid& grid, const BeamLikelihood
               " cells exceeds 127");
 
   const std::size_t cells = grid.size();
-  stats_.cells_total = cells;
   const char* name = to_string(kind_);
   if (kind_ == TableKind::kOffsetField) {
     stats_.bytes = table_bytes(cells, 2, kLutBins + 1, options.max_table_bytes, name);
@@ -169,7 +168,6 @@ LikelihoodField::LikelihoodField(const OccupancyGrid& grid, const BeamLikelihood
     stats_.bytes =
         table_bytes(cells, static_cast<std::size_t>(bins_), 0, options.max_table_bytes, name);
   }
-  stats_.bytes_per_cell = static_cast<double>(stats_.bytes) / static_cast<double>(cells);
 
   const double sa_c = sa / res, sc_c = sc / res;  // sigmas in cells
   if (kind_ == TableKind::kOffsetField) {

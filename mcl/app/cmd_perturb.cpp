@@ -174,11 +174,11 @@ int run_perturb(const PerturbOptions& o) {
     const Pose2& p = odom[i].pose;
     io::OdomRecord r;
     r.pose = p;
-    r.stamp = s.scan.stamp;
+    r.stamp = s.stamp;
     r.logger_stamp = s.logger_stamp;
     r.host = s.host;
     if (i > 0) {
-      const double dt = s.scan.stamp - scans[i - 1]->scan.stamp;
+      const double dt = s.stamp - scans[i - 1]->stamp;
       const Pose2 d = odom[i - 1].pose.between(p);
       if (dt > 0.0) {
         r.tv = std::hypot(d.x, d.y) / dt;

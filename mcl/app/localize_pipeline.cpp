@@ -171,7 +171,7 @@ io::RunMetrics run_localization(const LocalizeJob& job) {
   double first_stamp = 0.0;
   for (const auto& p : paired.scans) {
     if (p.source != io::OdomSource::kNone) {
-      first_stamp = log.scans[p.scan_index].scan.stamp;
+      first_stamp = log.scans[p.scan_index].stamp;
       break;
     }
   }
@@ -216,7 +216,7 @@ io::RunMetrics run_localization(const LocalizeJob& job) {
       continue;
     }
     const io::CarmenScan& s = log.scans[p.scan_index];
-    const double stamp = s.scan.stamp;
+    const double stamp = s.stamp;
     if (stamp < last_stamp) {
       ++out_of_order;  // a scan stamped before its predecessor cannot be filtered in order
       continue;

@@ -82,9 +82,9 @@ void Localizer::init_geometry() {
   }
   // Injected poses are collected during resampling's draws: room for all of them up front.
   const std::size_t max_out = kc.enabled ? kc.max_particles : cfg_.filter.particles;
-  inj_x_.reserve(max_out);
-  inj_y_.reserve(max_out);
-  inj_theta_.reserve(max_out);
+  ws_.injected_x.reserve(max_out);
+  ws_.injected_y.reserve(max_out);
+  ws_.injected_theta.reserve(max_out);
 }
 
 Pose2 Localizer::random_free_pose(Rng& rng) const noexcept {
@@ -166,16 +166,17 @@ void Localizer::seed_particles(const detail::SeedRequest& seed) {
   const std::size_t n = p_.size();
   const std::size_t count = std::min(seed.count, n);
   if (count == 0 || seed.poses.empty()) return;
-  victims_.resize(n);
-  std::iota(victims_.begin(), victims_.end(), 0u);
-  std::nth_element(victims_.begin(), victims_.begin() + static_cast<std::ptrdiff_t>(count - 1),
-                   victims_.end(), [&](std::uint32_t a, std::uint32_t b) {
+  ws_.seed_victims.resize(n);
+  std::iota(ws_.seed_victims.begin(), ws_.seed_victims.end(), 0u);
+  std::nth_element(ws_.seed_victims.begin(),
+                   ws_.seed_victims.begin() + static_cast<std::ptrdiff_t>(count - 1),
+                   ws_.seed_victims.end(), [&](std::uint32_t a, std::uint32_t b) {
                      return p_.log_w[a] != p_.log_w[b] ? p_.log_w[a] < p_.log_w[b] : a < b;
                    });
   Rng rng = Rng::for_block(cfg_.seed, next_step(), detail::kStreamSeed);
   const double lw = -std::log(static_cast<double>(n));
   for (std::size_t k = 0; k < count; ++k) {
-    const std::uint32_t i = victims_[k];
+    const std::uint32_t i = ws_.seed_victims[k];
     const Pose2& c = seed.poses[k % seed.poses.size()];
     for (int attempt = 0; attempt < 8; ++attempt) {
       const double x = c.x + rng.normal(seed.sigma_xy), y = c.y + rng.normal(seed.sigma_xy);

@@ -5,8 +5,6 @@
 #include <string>
 #include <utility>
 
-#include "pgmcl/mcl/update_result.hpp"
-
 namespace pgmcl {
 namespace {
 
@@ -76,8 +74,6 @@ void LocalizerConfig::validate() const {
       fail("filter.recovery.alpha_slow", "must be in (0, 1)");
     if (!(f.recovery.alpha_fast > f.recovery.alpha_slow && f.recovery.alpha_fast <= 1.0))
       fail("filter.recovery.alpha_fast", "must be in (alpha_slow, 1]");
-    if (!(f.recovery.threshold > 0.0 && f.recovery.threshold <= 1.0))
-      fail("filter.recovery.threshold", "must be in (0, 1]");
     if (f.recovery.probation > 255) fail("filter.recovery.probation", "must be <= 255");
     if (!(f.recovery.probation_weight > 0.0 && f.recovery.probation_weight < 1.0))
       fail("filter.recovery.probation_weight", "must be in (0, 1)");
@@ -123,20 +119,6 @@ void LocalizerConfig::validate() const {
   }
 
   if (threads < 0) fail("threads", "must be >= 0 (0 = OpenMP default)");
-}
-
-const char* to_string(SkipReason reason) noexcept {
-  switch (reason) {
-    case SkipReason::kNone:
-      return "none";
-    case SkipReason::kNotMoved:
-      return "not_moved";
-    case SkipReason::kNoValidBeams:
-      return "no_valid_beams";
-    case SkipReason::kTimeWentBackwards:
-      return "time_went_backwards";
-  }
-  return "unknown";
 }
 
 }  // namespace pgmcl

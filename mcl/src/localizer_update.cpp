@@ -57,7 +57,7 @@ UpdateResult Localizer::update(const Pose2& odometry_pose, const LaserScan& scan
 
   UpdateResult r = last_;  // estimate fields carry over on skipped updates
   r.skipped = SkipReason::kNone;
-  r.motion_applied = r.measured = r.resampled = false;
+  r.motion_applied = r.resampled = false;
   r.injected = 0;
   r.seeded = 0;
   r.switched = r.searched = false;
@@ -100,15 +100,15 @@ UpdateResult Localizer::update(const Pose2& odometry_pose, const LaserScan& scan
 
   // ---- Measurement (Dekan et al., Eq. (6), tempered) ----
   const auto tz = Clock::now();
-  r.measured = measurement_update(scan, delta, r);
+  const bool measured = measurement_update(scan, delta, r);
   r.timings.measurement_ms = ms_since(tz);
-  if (!r.measured) r.skipped = SkipReason::kNoValidBeams;
+  if (!measured) r.skipped = SkipReason::kNoValidBeams;
   force_ = false;
 
   // ---- Estimate before resampling (resampling only adds noise to it). ----
   const auto te = Clock::now();
   compute_estimate(r);
-  if (r.measured) {
+  if (measured) {
     count_background(r);
     if (hypotheses_ && r.converged) hypotheses_->converged(origin_.between(r.estimate));
   }
@@ -118,7 +118,7 @@ UpdateResult Localizer::update(const Pose2& odometry_pose, const LaserScan& scan
   if (r.alternative_evidence > 0.0) r.converged = false;
   r.timings.estimate_ms = ms_since(te);
 
-  if (r.measured) {
+  if (measured) {
     const auto tr = Clock::now();
     resample(r);
     r.timings.resample_ms = ms_since(tr);
@@ -152,17 +152,18 @@ void Localizer::motion_update(const Pose2& odom_prev, const Pose2& odom_now) {
 }
 
 bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, UpdateResult& r) {
-  valid_beam_indices(scan, field_->params().max_range, valid_);
-  r.beams_invalid = scan.ranges.size() - valid_.size();
-  select_beams(valid_, cfg_.likelihood.selection, selected_);
-  r.beams_used = selected_.size();
-  if (selected_.empty()) return false;
+  valid_beam_indices(scan, field_->params().max_range, ws_.valid_beams);
+  r.beams_invalid = scan.ranges.size() - ws_.valid_beams.size();
+  select_beams(ws_.valid_beams, cfg_.likelihood.selection, ws_.selected_beams);
+  r.beams_used = ws_.selected_beams.size();
+  if (ws_.selected_beams.empty()) return false;
 
-  model_.prepare(scan, selected_);
+  model_.prepare(scan, ws_.selected_beams);
   if (hypotheses_) {
     // Competing hypotheses may redraw some particles before the scan scores them all.
-    const detail::HypothesisStep h = hypotheses_->update(
-        scan, selected_, model_.beams(), origin_.between(anchor_).compose(delta), delta, p_.size());
+    const detail::HypothesisStep h =
+        hypotheses_->update(scan, ws_.selected_beams, model_.beams(),
+                            origin_.between(anchor_).compose(delta), delta, p_.size());
     seed_particles(h.seed);
     r.seeded = h.seed.poses.empty() ? 0 : std::min(h.seed.count, p_.size());
     r.switched = h.switched;
@@ -171,16 +172,16 @@ bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, Up
     r.alternative_evidence = h.alternative_evidence;
   }
   const std::size_t n = p_.size();
-  sum_q_.resize(n);
+  ws_.beam_sums.resize(n);
   if (cfg_.threads == 1)
-    model_.score_serial(p_.x, p_.y, p_.theta, sum_q_);
+    model_.score_serial(p_.x, p_.y, p_.theta, ws_.beam_sums);
   else
-    model_.score_parallel(p_.x, p_.y, p_.theta, sum_q_, cfg_.threads);
+    model_.score_parallel(p_.x, p_.y, p_.theta, ws_.beam_sums, cfg_.threads);
 
   // Per-particle log-likelihood of the scan (sum over beams).
-  const auto m = static_cast<double>(selected_.size());
-  ll_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) ll_[i] = model_.log_likelihood(sum_q_[i]);
+  const auto m = static_cast<double>(ws_.selected_beams.size());
+  ws_.scan_ll.resize(n);
+  for (std::size_t i = 0; i < n; ++i) ws_.scan_ll[i] = model_.log_likelihood(ws_.beam_sums[i]);
   // The averages start once the filter has converged (set_pose() counts as converged when
   // its covariance is within the convergence bounds): while a global search is under way
   // the set is spread anyway, and a long-term average seeded by that search's poor fit
@@ -189,7 +190,7 @@ bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, Up
     // Augmented MCL's average likelihood, under the weights before this scan (Table 8.3
     // line 6), per beam: sum_i w_i exp(ll_i / M).
     double w_avg = 0.0;
-    for (std::size_t i = 0; i < n; ++i) w_avg += p_.w[i] * std::exp(ll_[i] / m);
+    for (std::size_t i = 0; i < n; ++i) w_avg += p_.w[i] * std::exp(ws_.scan_ll[i] / m);
     update_recovery_averages(w_avg, r);
   }
 
@@ -201,9 +202,10 @@ bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, Up
   const double tau_cfg =
       lc.effective_beams > 0.0 ? std::min(1.0, lc.effective_beams / m) : lc.tempering;
   const double tau =
-      clustered_ ? tau_cfg : detail::limit_tempering(p_.log_w, ll_, tau_cfg, lc.min_ess_ratio);
+      clustered_ ? tau_cfg
+                 : detail::limit_tempering(p_.log_w, ws_.scan_ll, tau_cfg, lc.min_ess_ratio);
   r.tempering = tau;
-  for (std::size_t i = 0; i < n; ++i) p_.log_w[i] += tau * ll_[i];
+  for (std::size_t i = 0; i < n; ++i) p_.log_w[i] += tau * ws_.scan_ll[i];
   (void)normalise_log_weights(p_.log_w, p_.w);
   limit_probation_weight();
   r.n_eff = effective_sample_size(p_.w);
@@ -215,10 +217,8 @@ void Localizer::update_recovery_averages(double w_avg, UpdateResult& r) noexcept
   // its per-beam geometric mean p(z | x_i)^(1/M) instead: the raw scan likelihood scales
   // exponentially with the beam count (and underflows), which would make the injection
   // rate depend on the beam selection. Values stay within exp(ll_background .. ll_max).
-  // Probabilistic Robotics, Table 8.3, lines 9-10, seeded with the first value. (A
-  // start-up correction that used the plain mean for the first 1 / alpha values detected
-  // kidnappings sooner, but then let w_slow sink to the fit of a wrong mode within a few
-  // dozen scans: 3 of 8 kidnap runs never recovered, against 0 of 8 without it.)
+  // Probabilistic Robotics, Table 8.3, lines 9-10, seeded with the first value (why not a
+  // start-up correction: configs/experiments/README.md, "Why the defaults").
   if (!have_averages_) {
     w_slow_ = w_fast_ = w_avg;
     have_averages_ = true;
@@ -234,12 +234,12 @@ void Localizer::limit_probation_weight() {
   // Together, the particles on probation hold at most RecoveryConfig::probation_weight
   // (see there for why). Compared in log space: a random pose that fits 100 nats better
   // than the cluster has a weight share of 1 - 1e-44, which is 1.0 in double.
-  lw_probation_.clear();
-  lw_tracked_.clear();
+  ws_.log_w_probation.clear();
+  ws_.log_w_tracked.clear();
   for (std::size_t i = 0; i < p_.size(); ++i)
-    (probation_[i] != 0 ? lw_probation_ : lw_tracked_).push_back(p_.log_w[i]);
-  const double lse_probation = log_sum_exp(lw_probation_);
-  const double lse_tracked = log_sum_exp(lw_tracked_);
+    (probation_[i] != 0 ? ws_.log_w_probation : ws_.log_w_tracked).push_back(p_.log_w[i]);
+  const double lse_probation = log_sum_exp(ws_.log_w_probation);
+  const double lse_tracked = log_sum_exp(ws_.log_w_tracked);
   if (std::isfinite(lse_probation) && std::isfinite(lse_tracked)) {  // both groups hold weight
     const double share = cfg_.filter.recovery.probation_weight;
     const double log_ratio = lse_probation - lse_tracked;

@@ -48,22 +48,19 @@ void SensorProfile::validate() const {
   require(scan_time >= 0.0 && std::isfinite(scan_time), name, "scan_time must be >= 0 [s]");
 }
 
-LaserScan SensorProfile::make_scan(double stamp, const Pose2& sensor_pose) const {
+LaserScan SensorProfile::make_scan(const Pose2& sensor_pose) const {
   return make_scan(
-      stamp,
       std::vector<float>(static_cast<std::size_t>(beam_count), static_cast<float>(range_max)),
       sensor_pose);
 }
 
-LaserScan SensorProfile::make_scan(double stamp, std::vector<float> ranges,
-                                   const Pose2& sensor_pose) const {
+LaserScan SensorProfile::make_scan(std::vector<float> ranges, const Pose2& sensor_pose) const {
   if (ranges.size() != static_cast<std::size_t>(beam_count)) {
     throw std::invalid_argument("SensorProfile '" + name + "': make_scan got " +
                                 std::to_string(ranges.size()) + " ranges for " +
                                 std::to_string(beam_count) + " beams");
   }
   LaserScan s;
-  s.stamp = stamp;
   s.angle_min = angle_min;
   s.angle_increment = angle_increment;
   s.range_min = range_min;

@@ -54,7 +54,7 @@ SimulationLog simulate(const Scenario& sc, const maps::OccupancyGrid& grid) {
     rec.stamp = m.stamp;
     rec.truth = m.truth;
     rec.odometry = odom[i];
-    rec.scan = sc.sensor.make_scan(m.stamp, sc.sensor_mount);
+    rec.scan = sc.sensor.make_scan(sc.sensor_mount);
     render_scan(scene, sc.sensor, m.truth.compose(sc.sensor_mount), sc.noise, rng, rec.scan.ranges);
   }
   return log;

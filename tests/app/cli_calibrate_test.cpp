@@ -32,7 +32,7 @@ void write_static_log(const std::string& path, int scans, Fill fill) {
   Rng rng(77);
   for (int k = 0; k < scans; ++k) {
     io::CarmenScan s;
-    s.scan.stamp = 0.1 * k;
+    s.stamp = 0.1 * k;
     s.scan.angle_min = layout.angle_min;
     s.scan.angle_increment = layout.angle_increment;
     s.scan.range_max = 30.0;

@@ -48,7 +48,7 @@ void expect_kept(const Output& o, const std::vector<double>& stamps,
   for (std::size_t i = 0; i < stamps.size(); ++i) {
     const auto k = static_cast<std::size_t>(std::lround((stamps[i] - 1.0) / 0.5));
     EXPECT_EQ(o.truth[i].stamp, stamps[i]) << i;
-    EXPECT_EQ(o.raw.scans[i].scan.stamp, stamps[i]) << i;
+    EXPECT_EQ(o.raw.scans[i].stamp, stamps[i]) << i;
     EXPECT_EQ(o.raw.scans[i].scan.ranges, in.scans[k].scan.ranges) << i;
     EXPECT_NEAR(o.truth[i].pose.x, poses[k].x, 1e-12) << i;
     if (i == 0) continue;

@@ -31,7 +31,7 @@ TEST(CliPerturb, ZeroNoiseReproducesTruthIncrements) {
   for (std::size_t i = 0; i < poses.size(); ++i) {
     EXPECT_NEAR(o.truth[i].pose.x, poses[i].x, 1e-12);
     EXPECT_NEAR(o.truth[i].pose.theta, poses[i].theta, 1e-12);
-    EXPECT_DOUBLE_EQ(o.raw.odometry[i].stamp, o.raw.scans[i].scan.stamp);
+    EXPECT_DOUBLE_EQ(o.raw.odometry[i].stamp, o.raw.scans[i].stamp);
     if (i == 0) continue;
     const Pose2 t = poses[i - 1].between(poses[i]);
     for (const Pose2 odom_inc : {o.raw.scans[i - 1].odom_pose.between(o.raw.scans[i].odom_pose),

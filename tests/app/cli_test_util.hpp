@@ -66,7 +66,7 @@ inline io::CarmenLog room_log(const Room& room, const std::vector<Pose2>& poses,
   for (std::size_t k = 0; k < poses.size(); ++k) {
     io::CarmenScan s;
     s.message = io::LaserMessage::kFlaser;
-    s.scan.stamp = 1.0 + 0.5 * static_cast<double>(k);
+    s.stamp = 1.0 + 0.5 * static_cast<double>(k);
     s.scan.angle_min = layout.angle_min;
     s.scan.angle_increment = layout.angle_increment;
     for (int i = 0; i < beams; ++i) {
@@ -77,7 +77,7 @@ inline io::CarmenLog room_log(const Room& room, const std::vector<Pose2>& poses,
     }
     s.laser_pose = poses[k];
     s.odom_pose = poses[k];
-    s.logger_stamp = s.scan.stamp;
+    s.logger_stamp = s.stamp;
     log.scans.push_back(std::move(s));
   }
   return log;

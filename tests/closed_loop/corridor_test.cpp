@@ -46,7 +46,7 @@ TEST(SymmetricCorridor, KeepsTheMirrorHypothesisUntilTheFeatureThenTheTruth) {
   const LoopRun run =
       drive(loc, s.log, 0, s.log.records.size(), [&](const Step& st, const Localizer& l) {
         // Symmetric part: after a few updates to find the modes, before the feature shows.
-        if (!st.result.measured || st.truth.x < 16.0 || st.truth.x > 21.0) return;
+        if (!st.result.measured() || st.truth.x < 16.0 || st.truth.x > 21.0) return;
         const std::vector<Cluster> c = hypotheses(l);
         const double wt = hypothesis_weight(c, st.truth),
                      wm = hypothesis_weight(c, mirror(st.truth));

@@ -97,7 +97,7 @@ struct LoopRun {
   [[nodiscard]] std::size_t updates_between(std::size_t from, std::size_t to) const {
     std::size_t n = 0;
     for (std::size_t k = from; k <= to && k < steps.size(); ++k) {
-      n += steps[k].result.measured ? 1 : 0;
+      n += steps[k].result.measured() ? 1 : 0;
     }
     return n;
   }

@@ -45,10 +45,10 @@ TEST(CarmenIntel, CountsStampsAndPoses) {
   const CarmenScan& first = log.scans.front();
   const CarmenScan& last = log.scans.back();
   EXPECT_EQ(first.line, 175u);
-  EXPECT_EQ(first.scan.stamp, 32.9068);
+  EXPECT_EQ(first.stamp, 32.9068);
   EXPECT_EQ(first.scan.ranges[0], 1.09f);
   EXPECT_EQ(last.line, 16316u);
-  EXPECT_EQ(last.scan.stamp, 2683.77);
+  EXPECT_EQ(last.stamp, 2683.77);
   EXPECT_TRUE(test::same_pose(last.laser_pose, {-0.596494, -0.101202, 0.0119294}));
   EXPECT_EQ(first.host, "pippo");
   EXPECT_EQ(log.params.at("robot_frontlaser_offset"), "0.0");
@@ -84,7 +84,7 @@ TEST(CarmenIntel, GzipAndPlainReadIdentically) {
   ASSERT_EQ(a.scans.size(), b.scans.size());
   for (std::size_t i = 0; i < a.scans.size(); ++i) {
     ASSERT_EQ(a.scans[i].scan.ranges, b.scans[i].scan.ranges) << i;
-    ASSERT_EQ(a.scans[i].scan.stamp, b.scans[i].scan.stamp) << i;
+    ASSERT_EQ(a.scans[i].stamp, b.scans[i].stamp) << i;
     ASSERT_TRUE(test::same_pose(a.scans[i].laser_pose, b.scans[i].laser_pose)) << i;
     ASSERT_TRUE(test::same_pose(a.scans[i].odom_pose, b.scans[i].odom_pose)) << i;
   }
@@ -141,7 +141,7 @@ TEST(CarmenMessages, FlaserFieldsAndParams) {
   EXPECT_EQ(f.scan.ranges, (std::vector<float>{0.5f, 1.0f, 1.5f}));
   EXPECT_TRUE(test::same_pose(f.laser_pose, {1, 2, 0.5}));
   EXPECT_TRUE(test::same_pose(f.odom_pose, {3, 4, -0.5}));
-  EXPECT_EQ(f.scan.stamp, 10.25);
+  EXPECT_EQ(f.stamp, 10.25);
   EXPECT_EQ(f.logger_stamp, 10.5);
   EXPECT_EQ(f.host, "host");
   EXPECT_EQ(f.scan.range_max, 40.0);
@@ -212,7 +212,7 @@ TEST(CarmenMessages, RobotLaserRawLaserTruePos) {
   EXPECT_TRUE(test::same_pose(rl.odom_pose, {1, 2, 0}));
   EXPECT_EQ(rl.extras.tv, 0.3);
   EXPECT_EQ(rl.extras.turn_axis, 0.6);
-  EXPECT_EQ(rl.scan.stamp, 5.5);
+  EXPECT_EQ(rl.stamp, 5.5);
   // Mounting = robot_pose^-1 * laser_pose: 0.1 m forward.
   EXPECT_NEAR(rl.scan.sensor_pose.x, 0.1, 1e-12);
   EXPECT_NEAR(rl.scan.sensor_pose.y, 0.0, 1e-12);

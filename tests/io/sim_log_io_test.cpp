@@ -49,7 +49,7 @@ void expect_round_trip(const sims::SimulationLog& log, LaserMessage expected) {
     const sims::SimulationRecord& r = log.records[k];
     const CarmenScan& s = back.scans[k];
     EXPECT_EQ(s.message, expected);
-    EXPECT_EQ(s.scan.stamp, r.stamp);
+    EXPECT_EQ(s.stamp, r.stamp);
     ASSERT_EQ(s.scan.ranges, r.scan.ranges);  // shortest exact float text: bit-identical
     EXPECT_NEAR(s.scan.angle_min, r.scan.angle_min, 1e-12);
     EXPECT_NEAR(s.scan.angle_increment, r.scan.angle_increment, 1e-12);

@@ -112,7 +112,7 @@ TEST(LikelihoodField, OrientedExactAtBinCentresAndWithinBinWidthBracket_5mm) {
   const OccupancyGrid g = room(160, 120, 0.005, 23);
   const LikelihoodField f(g, BeamLikelihoodParams{}, with_kind(TableKind::kOrientedBins));
   check_oriented(g, f, rng);
-  EXPECT_DOUBLE_EQ(f.stats().bytes_per_cell, 16.0);
+  EXPECT_EQ(f.stats().bytes, 16u * g.size());
   // Paper sigmas: interior obstacle cells are provably never nearest, so only boundary
   // cells are stamped (the disk and the thick walls have interior cells).
   std::size_t obstacles = 0;
@@ -204,7 +204,7 @@ TEST(LikelihoodField, OffsetWithinMahalanobisAndCellBrackets_5mmAnd5cm) {
     const OccupancyGrid g = room(160, 120, res, 47);
     const LikelihoodField f(g, BeamLikelihoodParams{}, with_kind(TableKind::kOffsetField));
     check_offset(g, f, rng);
-    EXPECT_DOUBLE_EQ(f.stats().bytes_per_cell, 2.0 + 4097.0 / (160 * 120));
+    EXPECT_EQ(f.stats().bytes, 2u * g.size() + 4097u);
   }
 }
 

@@ -123,7 +123,7 @@ TEST(LikelihoodField, OrientedFallsBackToIsotropicAt5cmButNotAt5mm) {
   EXPECT_NEAR(ratio(coarse), 1.0524, 1e-3);  // sqrt(5.6894^2 + 50^2/12) / sqrt(3^2 + 50^2/12)
   EXPECT_TRUE(coarse.stats().orientation_skipped);
   EXPECT_EQ(coarse.kind(), TableKind::kIsotropic);
-  EXPECT_DOUBLE_EQ(coarse.stats().bytes_per_cell, 1.0);
+  EXPECT_EQ(coarse.stats().bytes, 60u * 40u);
   EXPECT_EQ(coarse.oriented().width, 0);  // the oriented view is empty: background only
   EXPECT_EQ(coarse.oriented().lookup(5.5f, 5.5f, 0), coarse.oriented().background);
 
@@ -224,7 +224,8 @@ TEST(LikelihoodField, BuildTimes50mBy50mAt5cmWithRandomWalls) {
     o.kind = k;
     const LikelihoodField f(g, BeamLikelihoodParams{}, o);
     std::cout << "[ build    ] 50 m x 50 m @ 5 cm, " << to_string(k) << ": "
-              << f.stats().build_seconds * 1e3 << " ms, " << f.stats().bytes_per_cell
+              << f.stats().build_seconds * 1e3 << " ms, "
+              << static_cast<double>(f.stats().bytes) / static_cast<double>(g.size())
               << " bytes/cell, " << f.stats().cells_computed << " cells computed, "
               << f.stats().sources_stamped << " obstacle cells stamped\n";
     if (k == TableKind::kIsotropic) check_isotropic_everywhere(g, f);

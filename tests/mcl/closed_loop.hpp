@@ -29,22 +29,29 @@ struct LoopErrors {
 using testkit::theta_error;
 using testkit::xy_error;
 
-// Runs steps [begin, end) of `truth` (map-local). Errors are accumulated from step
-// `score_from` on (to leave time for global convergence). Global truth = origin ∘ local.
+// Which steps of the path run_loop() feeds, and how.
+struct LoopSteps {
+  std::uint64_t noise_seed = 1;  // seeds the scans' range noise
+  std::size_t begin = 0;         // first step fed
+  std::size_t end = 0;           // one past the last step fed
+  std::size_t score_from = 0;    // first step whose error counts (time to converge)
+  double t0 = 0.0;               // stamp of step 0, seconds (steps are 0.1 s apart)
+};
+
+// Runs steps [steps.begin, steps.end) of `truth` (map-local). Global truth = origin ∘ local.
 inline LoopErrors run_loop(Localizer& loc, const World& world, const std::vector<Pose2>& truth,
                            const std::vector<Pose2>& odom, const ScanSpec& spec,
-                           std::uint64_t noise_seed, std::size_t begin, std::size_t end,
-                           std::size_t score_from = 0, double t0 = 0.0) {
+                           const LoopSteps& steps) {
   LoopErrors e;
-  Rng noise(noise_seed);
+  Rng noise(steps.noise_seed);
   testkit::ErrorScore score;
   const Pose2& origin = world.grid.origin();
-  for (std::size_t k = begin; k < end; ++k) {
-    const double stamp = t0 + 0.1 * static_cast<double>(k);
-    const LaserScan scan = world.scan(truth[k], spec, &noise, stamp);
+  for (std::size_t k = steps.begin; k < steps.end; ++k) {
+    const double stamp = steps.t0 + 0.1 * static_cast<double>(k);
+    const LaserScan scan = world.scan(truth[k], spec, &noise);
     const UpdateResult r = loc.update(odom[k], scan, stamp);
     ++e.updates;
-    if (r.measured) ++e.measured;
+    if (r.measured()) ++e.measured;
     if (r.converged && e.first_converged == static_cast<std::size_t>(-1)) e.first_converged = k;
     e.last_particles = r.particles;
     e.min_particles = std::min(e.min_particles, r.particles);
@@ -53,7 +60,7 @@ inline LoopErrors run_loop(Localizer& loc, const World& world, const std::vector
     e.err_xy.push_back(dxy);
     e.final_xy = dxy;
     e.final_theta = dth;
-    if (k >= score_from) score.add(dxy, dth);
+    if (k >= steps.score_from) score.add(dxy, dth);
   }
   e.rmse_xy = score.rmse_xy();
   e.max_xy = score.max_xy;

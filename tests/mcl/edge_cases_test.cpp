@@ -46,7 +46,7 @@ TEST(EdgeCases, SingleParticle) {
     const UpdateResult r = loc.update(odom[k], world.scan(truth[k], {}), 0.1 * k);
     expect_finite(r);
     EXPECT_EQ(r.particles, 1u);
-    if (r.measured) {
+    if (r.measured()) {
       EXPECT_DOUBLE_EQ(r.n_eff, 1.0);
       EXPECT_DOUBLE_EQ(loc.particles().weight[0], 1.0);
     }
@@ -67,7 +67,7 @@ TEST(EdgeCases, AllBeamsInvalid) {
   const UpdateResult r = loc.update({}, scan, 0.0);
   EXPECT_EQ(r.skipped, SkipReason::kNoValidBeams);
   EXPECT_STREQ(to_string(r.skipped), "no_valid_beams");
-  EXPECT_FALSE(r.measured);
+  EXPECT_FALSE(r.measured());
   EXPECT_FALSE(r.resampled);
   EXPECT_EQ(r.beams_total, scan.ranges.size());
   EXPECT_EQ(r.beams_invalid, scan.ranges.size());
@@ -102,7 +102,7 @@ TEST(EdgeCases, WrongBeamCountIsRejectedWithAClearError) {
   // Nothing changed; the right count works.
   EXPECT_TRUE(std::equal(x_before.begin(), x_before.end(), loc.particles().x.begin()));
   spec.beams = 1081;
-  EXPECT_TRUE(loc.update({}, world.scan({3.0, 4.5, 0.0}, spec), 0.0).measured);
+  EXPECT_TRUE(loc.update({}, world.scan({3.0, 4.5, 0.0}, spec), 0.0).measured());
   // Other malformed scans.
   LaserScan bad = world.scan({3.0, 4.5, 0.0}, {});
   bad.angle_increment = std::numeric_limits<double>::quiet_NaN();
@@ -119,7 +119,7 @@ TEST(EdgeCases, TimeGoingBackwardsThrowsByDefault) {
   Localizer loc(world.grid, LocalizerConfig{});
   loc.set_pose({3.0, 4.5, 0.0}, small_cov());
   const LaserScan scan = world.scan({3.0, 4.5, 0.0}, {});
-  ASSERT_TRUE(loc.update({}, scan, 10.0).measured);
+  ASSERT_TRUE(loc.update({}, scan, 10.0).measured());
   const std::vector<float> x_before(loc.particles().x.begin(), loc.particles().x.end());
   try {
     (void)loc.update({0.5, 0.0, 0.0}, scan, 9.5);
@@ -140,7 +140,7 @@ TEST(EdgeCases, TimeGoingBackwardsResetPolicyRestartsOdometry) {
   const Pose2 truth{3.0, 4.5, 0.0};
   loc.set_pose(truth, small_cov());
   const LaserScan scan = world.scan(truth, {});
-  ASSERT_TRUE(loc.update({5.0, 5.0, 0.0}, scan, 10.0).measured);
+  ASSERT_TRUE(loc.update({5.0, 5.0, 0.0}, scan, 10.0).measured());
   const std::vector<float> x_before(loc.particles().x.begin(), loc.particles().x.end());
   UpdateResult r = loc.update({-7.0, 2.0, 1.0}, scan, 3.0);  // a log that looped around
   EXPECT_EQ(r.skipped, SkipReason::kTimeWentBackwards);
@@ -148,7 +148,7 @@ TEST(EdgeCases, TimeGoingBackwardsResetPolicyRestartsOdometry) {
   EXPECT_TRUE(std::equal(x_before.begin(), x_before.end(), loc.particles().x.begin()));
   // The next update starts a new odometry chain: the 12 m odometry jump is not applied.
   r = loc.update({-7.0, 2.0, 1.0}, scan, 3.1);
-  EXPECT_TRUE(r.measured);
+  EXPECT_TRUE(r.measured());
   EXPECT_FALSE(r.motion_applied);
   EXPECT_LT(test::xy_error(r.estimate, truth), 0.1);
 }
@@ -168,7 +168,8 @@ TEST(EdgeCases, PosesNearPlusMinusPi) {
   EXPECT_GT(std::abs(first.mean.theta), 3.0);  // circular mean, not ~0
   test::ScanSpec spec;
   spec.noise_sigma = 0.01;
-  const test::LoopErrors e = test::run_loop(loc, world, truth, odom, spec, 4, 0, truth.size(), 3);
+  const test::LoopErrors e = test::run_loop(
+      loc, world, truth, odom, spec, {.noise_seed = 4, .end = truth.size(), .score_from = 3});
   RecordProperty("rmse_xy_m", std::to_string(e.rmse_xy));
   RecordProperty("max_theta_deg", std::to_string(e.max_theta / kDeg));
   // Seen: RMSE 2.1 cm, max heading error 1.8 deg.
@@ -195,8 +196,10 @@ TEST(EdgeCases, UtmScaleOriginTracksLikeOriginAtZero) {
   Localizer l0(w0.grid, LocalizerConfig{}), lu(wu.grid, LocalizerConfig{});
   l0.set_pose(truth[0], small_cov());
   lu.set_pose(utm.compose(truth[0]), small_cov());
-  const auto e0 = test::run_loop(l0, w0, truth, odom, spec, 5, 0, 120, 3);
-  const auto eu = test::run_loop(lu, wu, truth, odom, spec, 5, 0, 120, 3);
+  const auto e0 =
+      test::run_loop(l0, w0, truth, odom, spec, {.noise_seed = 5, .end = 120, .score_from = 3});
+  const auto eu =
+      test::run_loop(lu, wu, truth, odom, spec, {.noise_seed = 5, .end = 120, .score_from = 3});
   RecordProperty("rmse_xy_zero_m", std::to_string(e0.rmse_xy));
   RecordProperty("rmse_xy_utm_m", std::to_string(eu.rmse_xy));
   RecordProperty("rmse_diff_m", std::to_string(eu.rmse_xy - e0.rmse_xy));

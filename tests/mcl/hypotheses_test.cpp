@@ -52,8 +52,8 @@ Recovery run_glitched(const Glitched& g, bool hypotheses, std::uint64_t seed) {
   loc.set_pose(g.truth[0], cov);
   test::ScanSpec spec;
   spec.noise_sigma = 0.01;
-  const test::LoopErrors e =
-      test::run_loop(loc, world, g.truth, g.odom, spec, seed + 7, 0, g.truth.size());
+  const test::LoopErrors e = test::run_loop(loc, world, g.truth, g.odom, spec,
+                                            {.noise_seed = seed + 7, .end = g.truth.size()});
   Recovery r;
   for (std::size_t k = 0; k < g.at; ++k) r.max_before = std::max(r.max_before, e.err_xy[k]);
   // Back within 0.2 m and staying there.

@@ -48,7 +48,8 @@ TEST(Localizer, TracksTheLoopWithinBounds) {
   Localizer loc(sc.world.grid, cfg);
   loc.set_pose(sc.truth[0], diag_cov(0.1, 5 * kDeg));
   const test::LoopErrors e =
-      test::run_loop(loc, sc.world, sc.truth, sc.odom, sc.spec, 21, 0, sc.truth.size(), 5);
+      test::run_loop(loc, sc.world, sc.truth, sc.odom, sc.spec,
+                     {.noise_seed = 21, .end = sc.truth.size(), .score_from = 5});
   RecordProperty("rmse_xy_m", std::to_string(e.rmse_xy));
   RecordProperty("max_xy_m", std::to_string(e.max_xy));
   RecordProperty("max_theta_deg", std::to_string(e.max_theta / kDeg));
@@ -75,8 +76,8 @@ TEST(Localizer, FixedParticleCountWithoutKld) {
   cfg.filter.particles = 700;
   Localizer loc(sc.world.grid, cfg);
   loc.set_pose(sc.truth[0], diag_cov(0.1, 5 * kDeg));
-  const test::LoopErrors e =
-      test::run_loop(loc, sc.world, sc.truth, sc.odom, sc.spec, 21, 0, 80, 5);
+  const test::LoopErrors e = test::run_loop(loc, sc.world, sc.truth, sc.odom, sc.spec,
+                                            {.noise_seed = 21, .end = 80, .score_from = 5});
   EXPECT_EQ(e.min_particles, 700u);
   EXPECT_EQ(e.last_particles, 700u);
   EXPECT_LT(e.rmse_xy, 0.05);
@@ -93,13 +94,13 @@ TEST(Localizer, GatingSkipsUntilMovedOrForced) {
   const Pose2 odom0{1.0, 2.0, 0.5};
   UpdateResult r = loc.update(odom0, scan, 0.0);
   EXPECT_EQ(r.skipped, SkipReason::kNone);  // the first update always measures
-  EXPECT_TRUE(r.measured);
+  EXPECT_TRUE(r.measured());
   const Pose2 est0 = r.estimate;
   // 10 cm forward in the odometry frame: below d_min -> skipped, dead-reckoned estimate.
   const Pose2 odom1 = odom0.compose({0.1, 0.0, 0.0});
   r = loc.update(odom1, scan, 0.1);
   EXPECT_EQ(r.skipped, SkipReason::kNotMoved);
-  EXPECT_FALSE(r.measured);
+  EXPECT_FALSE(r.measured());
   EXPECT_FALSE(r.motion_applied);
   const Pose2 expect = est0.compose({0.1, 0.0, 0.0});
   EXPECT_NEAR(r.estimate.x, expect.x, 1e-12);
@@ -109,7 +110,7 @@ TEST(Localizer, GatingSkipsUntilMovedOrForced) {
   loc.force_update();
   r = loc.update(odom1, scan, 0.2);
   EXPECT_EQ(r.skipped, SkipReason::kNone);
-  EXPECT_TRUE(r.measured && r.motion_applied);
+  EXPECT_TRUE(r.measured() && r.motion_applied);
   r = loc.update(odom1, scan, 0.3);
   EXPECT_EQ(r.skipped, SkipReason::kNotMoved);
   // Rotation beyond theta_min passes the gate.
@@ -119,7 +120,7 @@ TEST(Localizer, GatingSkipsUntilMovedOrForced) {
   cfg.gating.enabled = false;
   Localizer ungated(sc.world.grid, cfg);
   ungated.update(odom0, scan, 0.0);
-  EXPECT_TRUE(ungated.update(odom0, scan, 0.1).measured);
+  EXPECT_TRUE(ungated.update(odom0, scan, 0.1).measured());
 }
 
 TEST(Localizer, SelectiveResamplingFollowsTheThreshold) {
@@ -137,7 +138,7 @@ TEST(Localizer, SelectiveResamplingFollowsTheThreshold) {
     const double t = static_cast<double>(k);
     EXPECT_FALSE(never.update(sc.odom[k], scan, t).resampled);
     const UpdateResult r = always.update(sc.odom[k], scan, t);
-    EXPECT_EQ(r.resampled, r.measured);
+    EXPECT_EQ(r.resampled, r.measured());
     EXPECT_LT(r.n_eff, static_cast<double>(r.particles) + 1e-9);
   }
 }
@@ -286,8 +287,6 @@ TEST(LocalizerConfig, ValidateNamesTheField) {
   c.filter.recovery.alpha_fast = 0.0005;
   expect_invalid(c, "filter.recovery.alpha_fast");
   c = {};
-  c.filter.recovery.threshold = 0.0;
-  expect_invalid(c, "filter.recovery.threshold");
   c = {};
   c.filter.recovery.probation = 256;  // stored per particle in 8 bits
   expect_invalid(c, "filter.recovery.probation");

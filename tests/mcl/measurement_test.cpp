@@ -289,7 +289,7 @@ TEST(MeasurementStress, PaperSigmaFiveMillimetreMapStaysFinite) {
   spec.noise_sigma = 0.0057;
   Rng noise(3);
   const UpdateResult r = loc.update({}, world.scan(truth, spec, &noise), 0.0);
-  ASSERT_TRUE(r.measured);
+  ASSERT_TRUE(r.measured());
   RecordProperty("n_eff", std::to_string(r.n_eff));  // seen: 1.0 (one particle wins)
   EXPECT_EQ(r.beams_used, 1081u);
   EXPECT_GE(r.n_eff, 1.0);

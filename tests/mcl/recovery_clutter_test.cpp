@@ -43,17 +43,18 @@ Cluttered run_with_clutter(const LocalizerConfig& cfg, std::uint64_t seed) {
   loc.set_pose(truth[0], cov);
   Cluttered c;
   const std::size_t a = 40, b = 160, end = truth.size();
-  c.before = test::run_loop(loc, world, truth, odom, spec, seed + 1, 0, a);
+  c.before = test::run_loop(loc, world, truth, odom, spec, {.noise_seed = seed + 1, .end = a});
   // run_loop does not report injections; count them per step on the cluttered stretch.
   for (std::size_t k = a; k < b; ++k) {
-    const test::LoopErrors e =
-        test::run_loop(loc, cluttered, truth, odom, spec, seed + 2 + k, k, k + 1);
+    const test::LoopErrors e = test::run_loop(
+        loc, cluttered, truth, odom, spec, {.noise_seed = seed + 2 + k, .begin = k, .end = k + 1});
     c.injected += loc.last_result().injected;
     c.during.err_xy.push_back(e.final_xy);
     c.during.max_xy = std::max(c.during.max_xy, e.final_xy);
     if (e.final_xy > 0.3) ++c.during.measured;  // reused: steps more than 0.3 m off
   }
-  c.after = test::run_loop(loc, world, truth, odom, spec, seed + 3, b, end);
+  c.after = test::run_loop(loc, world, truth, odom, spec,
+                           {.noise_seed = seed + 3, .begin = b, .end = end});
   return c;
 }
 

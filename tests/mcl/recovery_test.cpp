@@ -35,7 +35,8 @@ TEST_P(GlobalLocalisation, ConvergesFromAnywhere) {
   ASSERT_EQ(loc.particles().size(), loc.config().filter.global_particles);
   constexpr std::size_t kBudget = 40;  // updates
   const test::LoopErrors e =
-      test::run_loop(loc, world, truth, odom, spec, 7 + start, start, start + kBudget);
+      test::run_loop(loc, world, truth, odom, spec,
+                     {.noise_seed = 7 + start, .begin = start, .end = start + kBudget});
   // Seen: converged after 10 / 9 / 11 / 12 updates (starts 0 / 60 / 110 / 170), final
   // error 1.8-4.5 cm, 300 particles (KLD's minimum) at the end.
   ASSERT_NE(e.first_converged, static_cast<std::size_t>(-1)) << "never converged";
@@ -64,7 +65,8 @@ TEST(Kidnapping, RecoversAfterBeingCarriedAway) {
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
   cov.diagonal() << 0.01, 0.01, 0.003;
   loc.set_pose(truth[0], cov);
-  test::LoopErrors before = test::run_loop(loc, world, truth, odom, spec, 1, 0, 40);
+  test::LoopErrors before =
+      test::run_loop(loc, world, truth, odom, spec, {.noise_seed = 1, .end = 40});
   ASSERT_LT(before.final_xy, 0.1);
   ASSERT_TRUE(loc.last_result().converged);
 
@@ -78,7 +80,8 @@ TEST(Kidnapping, RecoversAfterBeingCarriedAway) {
   }
   ASSERT_GT(test::xy_error(truth2[39], truth2[40]), 3.0);
   const test::LoopErrors after =
-      test::run_loop(loc, world, truth2, odom2, spec, 2, 40, truth2.size(), 0, 100.0);
+      test::run_loop(loc, world, truth2, odom2, spec,
+                     {.noise_seed = 2, .begin = 40, .end = truth2.size(), .t0 = 100.0});
   // Seen: back within 10 cm 77 updates after the kidnapping with probation 30, 2.8 cm at
   // the end (60 updates with probation 15; 29 updates and 2.9 cm before injected lineages
   // were put on probation, RecoveryConfig). Over 8

@@ -63,10 +63,8 @@ struct World {
   }
 
   // Scan seen from the robot at map-local pose `robot`.
-  [[nodiscard]] LaserScan scan(const Pose2& robot, const ScanSpec& spec, Rng* rng = nullptr,
-                               double stamp = 0.0) const {
+  [[nodiscard]] LaserScan scan(const Pose2& robot, const ScanSpec& spec, Rng* rng = nullptr) const {
     LaserScan s;
-    s.stamp = stamp;
     s.angle_min = -spec.fov / 2;
     s.angle_increment = spec.fov / static_cast<double>(spec.beams - 1);
     s.range_min = spec.range_min;

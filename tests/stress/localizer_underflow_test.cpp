@@ -70,7 +70,7 @@ RunErrors run_loop(const FiveMillimetreRun& run, const LocalizerConfig& cfg, dou
   const Scanner scanner(run.room.grid, kPaperSigmaAlong);
   min_neff = 1e300;
   const auto check = [&](const UpdateResult& r) {
-    if (!r.measured) return;
+    if (!r.measured()) return;
     EXPECT_EQ(r.beams_used, 1081u);
     EXPECT_GE(r.n_eff, 1.0 - 1e-9);
     min_neff = std::min(min_neff, r.n_eff);

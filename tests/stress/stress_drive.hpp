@@ -91,7 +91,7 @@ inline RunErrors drive(Localizer& loc, const Scanner& scanner, const maps::Occup
   testkit::ErrorScore score;
   for (std::size_t k = 0; k < truth.size(); ++k) {
     const double stamp = hooks.stamp ? hooks.stamp(k) : 0.1 * static_cast<double>(k);
-    LaserScan scan = scanner.scan(truth[k], noise, stamp);
+    LaserScan scan = scanner.scan(truth[k], noise);
     if (hooks.scan) hooks.scan(k, scan);
     UpdateResult r;
     try {
@@ -100,7 +100,7 @@ inline RunErrors drive(Localizer& loc, const Scanner& scanner, const maps::Occup
       ++e.rejected;
       r = loc.last_result();
     }
-    e.measured += r.measured ? 1 : 0;
+    e.measured += r.measured() ? 1 : 0;
     e.all_finite = e.all_finite && result_finite(r) && weights_finite(loc.particles());
     const Pose2 gt = grid.origin().compose(truth[k]);
     const double dxy = testkit::xy_error(r.estimate, gt);

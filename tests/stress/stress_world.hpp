@@ -78,7 +78,7 @@ class Scanner {
         mount_(mount) {}
 
   /// The scan seen from the robot at map-local pose `robot`.
-  [[nodiscard]] LaserScan scan(const Pose2& robot, Rng& rng, double stamp = 0.0) const {
+  [[nodiscard]] LaserScan scan(const Pose2& robot, Rng& rng) const {
     std::vector<float> ranges(static_cast<std::size_t>(profile_.beam_count));
     const Pose2 sensor = origin_.compose(robot).compose(mount_);
     caster_.cast_scan(sensor, profile_.fan(), ranges);
@@ -86,7 +86,7 @@ class Scanner {
       if (r < static_cast<float>(profile_.range_max) && sigma_ > 0.0)
         r = static_cast<float>(std::max(0.0, r + rng.normal(sigma_)));
     }
-    return profile_.make_scan(stamp, std::move(ranges), mount_);
+    return profile_.make_scan(std::move(ranges), mount_);
   }
   [[nodiscard]] const sims::SensorProfile& profile() const noexcept { return profile_; }
   [[nodiscard]] const Pose2& mount() const noexcept { return mount_; }

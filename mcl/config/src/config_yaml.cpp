@@ -147,7 +147,6 @@ void read_all(YamlMap& root, Reader& r, LocalizerConfig& c) {
     r.flag(rec, "enabled", f.recovery.enabled);
     r.number(rec, "alpha_slow", f.recovery.alpha_slow);
     r.number(rec, "alpha_fast", f.recovery.alpha_fast);
-    r.number(rec, "threshold", f.recovery.threshold);
     r.count(rec, "probation", f.recovery.probation);
     r.number(rec, "probation_weight", f.recovery.probation_weight);
     rec.finish();
@@ -388,7 +387,6 @@ std::string localizer_config_yaml(const LocalizerConfig& c) {
   out << YAML::Key << "enabled" << YAML::Value << f.recovery.enabled;
   out << YAML::Key << "alpha_slow" << YAML::Value << f.recovery.alpha_slow;
   out << YAML::Key << "alpha_fast" << YAML::Value << f.recovery.alpha_fast;
-  out << YAML::Key << "threshold" << YAML::Value << f.recovery.threshold;
   out << YAML::Key << "probation" << YAML::Value << f.recovery.probation;
   out << YAML::Key << "probation_weight" << YAML::Value << f.recovery.probation_weight;
   out << YAML::EndMap << YAML::EndMap;

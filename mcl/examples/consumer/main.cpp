@@ -34,9 +34,9 @@ int main(int argc, char** argv) try {
   for (int step = 0; step <= 40; ++step) {
     std::vector<float> ranges(static_cast<std::size_t>(sensor.beam_count));
     caster.cast_scan(truth, sensor.fan(), ranges);
-    const auto scan = sensor.make_scan(0.25 * step, ranges);
-    const auto result = localizer.update(truth, scan, scan.stamp);  // odometry = truth here
-    if (result.measured) {
+    const auto scan = sensor.make_scan(ranges);
+    const auto result = localizer.update(truth, scan, 0.25 * step);  // odometry = truth here
+    if (result.measured()) {
       const double e = std::hypot(result.estimate.x - truth.x, result.estimate.y - truth.y);
       sq_err += e * e;
       ++updates;

@@ -61,9 +61,8 @@ int main() {
     const pgmcl::Pose2 step{0.1, 0.0, 0.0};
     truth = truth.compose(step);
     odom = odom.compose({0.101, 0.0, 0.002});  // odometry 1 % long, drifting left
-    pgmcl::LaserScan scan = cast(grid, truth);
-    scan.stamp = 0.1 * k;
-    const pgmcl::UpdateResult r = localizer.update(odom, scan, scan.stamp);
+    const pgmcl::LaserScan scan = cast(grid, truth);
+    const pgmcl::UpdateResult r = localizer.update(odom, scan, 0.1 * k);
     err = std::hypot(r.estimate.x - truth.x, r.estimate.y - truth.y);
   }
   std::printf("in-memory grid, pgmcl::mcl only: final error %.3f m\n", err);

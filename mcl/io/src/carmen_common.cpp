@@ -48,7 +48,7 @@ Trajectory scan_truth(const CarmenLog& log, LaserMessage which) {
   Trajectory t;
   for (const CarmenScan& s : log.scans) {
     if (s.message != which || !s.has_poses) continue;
-    t.push_back({s.scan.stamp, s.laser_pose.compose(s.scan.sensor_pose.inverse())});
+    t.push_back({s.stamp, s.laser_pose.compose(s.scan.sensor_pose.inverse())});
   }
   return t;
 }

@@ -86,7 +86,7 @@ CarmenScan parse_flaser(std::span<const std::string_view> tokens, LaserMessage m
   read_ranges(c, n, s.scan.ranges);
   s.laser_pose = read_pose(c, "x", "y", "theta");
   s.odom_pose = read_pose(c, "odom_x", "odom_y", "odom_theta");
-  read_tail(c, s.scan.stamp, s);
+  read_tail(c, s.stamp, s);
   const BeamLayout layout = sick_beam_layout(n);
   s.scan.angle_min = layout.angle_min;
   s.scan.angle_increment = layout.angle_increment;
@@ -139,7 +139,7 @@ CarmenScan parse_config_laser(std::span<const std::string_view> tokens, LaserMes
     // CARMEN logs both poses in the same odometry frame, so their difference is the mounting.
     s.scan.sensor_pose = s.odom_pose.between(s.laser_pose);
   }
-  read_tail(c, s.scan.stamp, s);
+  read_tail(c, s.stamp, s);
   return s;
 }
 

@@ -64,7 +64,7 @@ class CarmenParser {
         for (const float r : s.scan.ranges) {
           if (!std::isfinite(r) || r < 0.0f) ++log_.report.invalid_beams;
         }
-        check_time(type, s.scan.stamp, line_no);
+        check_time(type, s.stamp, line_no);
         log_.scans.push_back(std::move(s));
         count(type);
       } else {

@@ -112,12 +112,14 @@ std::string format_scan(const CarmenScan& s) {
       put(out, s.extras.turn_axis);
     }
   }
-  put_tail(out, sc.stamp, s.host, s.logger_stamp);
+  put_tail(out, s.stamp, s.host, s.logger_stamp);
   return out;
 }
 
-CarmenScan make_scan_record(const LaserScan& scan, const Pose2& odom_pose, std::string host) {
+CarmenScan make_scan_record(const LaserScan& scan, double stamp, const Pose2& odom_pose,
+                            std::string host) {
   CarmenScan s;
+  s.stamp = stamp;
   const bool flaser =
       matches_sick_layout(scan) && scan.sensor_pose.y == 0.0 && scan.sensor_pose.theta == 0.0;
   s.message = flaser ? LaserMessage::kFlaser : LaserMessage::kRobotLaser1;
@@ -128,7 +130,7 @@ CarmenScan make_scan_record(const LaserScan& scan, const Pose2& odom_pose, std::
   s.odom_pose = odom_pose;
   s.laser_pose = odom_pose.compose(scan.sensor_pose);
   s.host = std::move(host);
-  s.logger_stamp = scan.stamp;
+  s.logger_stamp = stamp;
   return s;
 }
 
@@ -176,7 +178,7 @@ void write_carmen(const std::string& path, const CarmenLog& log) {
     items.push_back({key(log.truepos[i].stamp, log.truepos[i].line), 1, i});
   }
   for (std::size_t i = 0; i < log.scans.size(); ++i) {
-    items.push_back({key(log.scans[i].scan.stamp, log.scans[i].line), 2, i});
+    items.push_back({key(log.scans[i].stamp, log.scans[i].line), 2, i});
   }
   std::stable_sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
     return std::tie(a.key, a.kind) < std::tie(b.key, b.kind);

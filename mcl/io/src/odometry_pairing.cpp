@@ -26,7 +26,7 @@ PairedScans pair_odometry(const CarmenLog& log, const PairingOptions& opt) {
     const CarmenScan& s = log.scans[i];
     PairedScan p;
     p.scan_index = i;
-    if (const auto pose = interpolate_at(odom, s.scan.stamp, opt.max_gap)) {
+    if (const auto pose = interpolate_at(odom, s.stamp, opt.max_gap)) {
       p.odom = *pose;
       p.source = OdomSource::kInterpolated;
       ++out.report.interpolated;

@@ -30,7 +30,7 @@ CarmenLog to_carmen_log(const sims::SimulationLog& log, const std::string& host)
     }
     out.odometry.push_back(std::move(odom));
 
-    CarmenScan scan = make_scan_record(r.scan, r.odometry, host);
+    CarmenScan scan = make_scan_record(r.scan, r.stamp, r.odometry, host);
     if (scan.message == LaserMessage::kFlaser && !params_set) {
       set_front_laser_params(out.params, r.scan);
       params_set = true;

@@ -9,18 +9,10 @@ namespace {
 /// Below this the translation direction is numerical noise: treat as a pure rotation.
 constexpr double kMinTranslation = 1e-6;  // metres
 
-/// Below this translation the bearing rot1 = atan2(dy, dx) is set by centimetre jitter of
-/// the poses (in-place turns, a robot standing still), not by the robot's motion, yet
-/// Table 5.6 scales the noise of rot1 and rot2 with rot1^2: a robot turning in place with
-/// 1 cm of sideways jitter (|rot1| ~ pi/2) would get sqrt(a1) * pi/2 of heading noise on
-/// each of rot1 and rot2 (about 6 deg each for a1 = 0.005), whatever it really turned.
-/// nav2_amcl's differential model sets rot1 = 0 below 1 cm for the same reason. Here the
-/// geometry stays exact; only the noise is computed as if the rotation had happened in
-/// rot2, fading linearly back to Table 5.6 at this translation. 5 cm rather than AMCL's
-/// 1 cm: the corrected poses of the fr079 benchmark log jitter by up to 2 cm sideways
-/// while the robot turns in place; with 1 cm a filter with 1000 particles lost the robot in
-/// 2 of 12 runs there (a particle spun 80-97 deg on a 1.3 cm jitter while people hid 2/3 of
-/// the beams), with 5 cm in 0 of 18 (tests/mcl/motion_small_translation_test.cpp).
+/// Below this translation rot1 = atan2(dy, dx) is set by pose jitter, not motion, yet Table
+/// 5.6 scales the noise with rot1^2; the noise is computed as if the turn happened in rot2,
+/// fading back to Table 5.6 at this length (nav2_amcl does the same below 1 cm; why 5 cm:
+/// configs/experiments/README.md, "Why the defaults").
 constexpr double kBearingTranslation = 0.05;  // metres
 
 /// Standard deviation from a variance-form sum; the sum of non-negative terms is >= 0

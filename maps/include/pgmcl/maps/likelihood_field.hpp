@@ -188,11 +188,9 @@ struct LikelihoodFieldStats {
   double ll_background = 0.0;  ///< log-likelihood of the background value
   int reach_cells = 0;
   bool orientation_skipped = false;  ///< oriented requested but kernel isotropic at this res
-  std::size_t cells_total = 0;
   std::size_t cells_computed = 0;   ///< cells holding a non-background value (within reach)
   std::size_t sources_stamped = 0;  ///< obstacle cells whose kernel was stamped
   std::size_t bytes = 0;            ///< hot tables + LUT
-  double bytes_per_cell = 0.0;      ///< bytes / cells_total
   std::size_t oracle_bytes = 0;     ///< obstacle bitmask kept for exact_log_likelihood()
   double build_seconds = 0.0;
 };

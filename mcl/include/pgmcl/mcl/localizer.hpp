@@ -3,15 +3,7 @@
 /// augmented-MCL recovery of Table 8.3 and Fox's KLD-sampling) with the planar Gaussian
 /// beam model of Dekan et al. read from precomputed likelihood tables.
 ///
-/// One update():
-///  1. validate the scan at the boundary (throws std::invalid_argument, state untouched);
-///  2. gating: skip everything while odometry moved less than d_min / theta_min;
-///  3. motion: every particle samples the odometry model (Table 5.6), one RNG stream per
-///     block of 256 particles, so the result is identical for any thread count;
-///  4. measurement: log w += tau * sum_j ll_j (tempered, see LikelihoodConfig), then
-///     log-sum-exp normalisation and N_eff;
-///  5. estimate: weighted mean (circular heading), covariance, heaviest cluster;
-///  6. selective resampling (systematic) with KLD-sized output and random injection.
+/// mcl/README.md, "One update()", walks through the steps of update() once.
 /// The hot loops neither allocate nor throw nor do I/O.
 ///
 /// Frames: everything public is in the *global* frame (the map's frame, possibly at UTM
@@ -84,9 +76,6 @@ class Localizer {
   [[nodiscard]] ParticlesView particles() const noexcept;
   [[nodiscard]] const LocalizerConfig& config() const noexcept { return cfg_; }
   [[nodiscard]] const maps::LikelihoodField& field() const noexcept { return *field_; }
-  [[nodiscard]] std::shared_ptr<const maps::LikelihoodField> field_ptr() const noexcept {
-    return field_;
-  }
   /// Pose of the map-local grid frame in the global frame.
   [[nodiscard]] const Pose2& origin() const noexcept { return origin_; }
   /// The result of the last update() (or of the initial state).
@@ -119,25 +108,30 @@ class Localizer {
   double resolution_ = 0.0;
   int width_ = 0;
 
+  /// Buffers reused across updates; they only grow, so a steady-state update allocates
+  /// nothing.
+  struct Workspace {
+    std::vector<std::uint32_t> valid_beams, selected_beams;  // beam indices into the scan
+    std::vector<std::uint32_t> beam_sums;           // per particle: integer sum of quantised beams
+    std::vector<double> scan_ll;                    // per particle: scan log-likelihood
+    std::vector<double> cumulative_w;               // KLD's inverse-CDF draws
+    std::vector<std::uint32_t> ancestors;           // systematic resampling's picks
+    std::vector<float> next_x, next_y, next_theta;  // the resampled set, swapped in
+    std::vector<float> injected_x, injected_y, injected_theta;  // poses injected this time
+    std::vector<std::uint8_t> next_probation;
+    std::vector<double> log_w_probation, log_w_tracked;  // limit_probation_weight()
+    std::vector<std::uint32_t> seed_victims;             // seed_particles()
+  };
+
   ParticleSet p_;
-  // Scratch buffers, reused across updates (grow only).
-  std::vector<std::uint32_t> sum_q_;
-  std::vector<double> ll_;  // per-particle scan log-likelihood
-  std::vector<std::uint32_t> idx_;
-  std::vector<std::uint32_t> valid_;
-  std::vector<std::uint32_t> selected_;
-  std::vector<float> tmp_x_, tmp_y_, tmp_theta_;
-  std::vector<float> inj_x_, inj_y_, inj_theta_;  // poses injected by this resampling
   // Per particle: measurement updates its injected lineage stays on probation
   // (RecoveryConfig::probation); 0 for particles that descend from the tracked set.
-  std::vector<std::uint8_t> probation_, tmp_probation_;
-  std::vector<double> lw_probation_, lw_tracked_;  // limit_probation_weight() scratch
-  std::vector<double> cum_;                        // cumulative weights for KLD's draws
+  std::vector<std::uint8_t> probation_;
+  Workspace ws_;
   KldBinner binner_;
   double kld_z_ = 0.0;  // normal_quantile(1 - kld.delta)
   ParticleClusterer clusterer_;
   std::unique_ptr<detail::HypothesisTracker> hypotheses_;  // null when disabled
-  std::vector<std::uint32_t> victims_;                     // seed_particles() scratch
   bool clustered_ = false;  // the last estimate met EstimateConfig's cluster criterion
 
   // Filter state.

@@ -19,44 +19,21 @@ struct MotionConfig {
   MotionNoise noise{};  ///< Probabilistic Robotics Table 5.6, variance form (motion_model.hpp)
 };
 
-/// How the per-beam log-likelihoods of one scan are combined.
-///
-/// Beams of one scan are not independent: neighbouring beams see the same map error
-/// (discretisation, unmapped clutter, a wall that moved), so the plain sum of M per-beam
-/// log-likelihoods is overconfident by roughly M / (number of independent errors), and
-/// the posterior collapses onto a few particles (and changes with the beam selection).
-/// pgmcl tempers the sum (a power posterior) instead of AMCL's ad-hoc p += pz^3:
-///   log w += tau * sum_j ll_j,   tau = min(1, K / beams_used),  K = effective_beams,
-/// i.e. a scan counts as `effective_beams` independent readings whatever its beam count.
-/// The default 20 is a judgement, not a fit. On the synthetic test room (i.i.d. range
-/// noise, exact map, 120 beams) larger K is slightly more accurate, because there the
-/// errors really are independent: RMSE 2.5 / 2.4 / 2.1 / 1.9 / 1.7 cm for K = 5 / 10 / 20
-/// / 50 / 120, and global localisation converged from all 8 starts for K = 10..120. Real
-/// scans see unmapped clutter and map error shared by neighbouring beams; K = 20 keeps
-/// N_eff / N near 0.55 after a scan while tracking, so selective resampling skips about
-/// half of the resamplings. K = M (no correction) with 1081 beams and the paper's sigmas
-/// puts all the weight on one particle (N_eff = 1.0 in the stress test).
-/// With effective_beams <= 0 the fixed exponent `tempering` is used instead.
+/// How the per-beam log-likelihoods of one scan are combined: a power posterior,
+///   log w += tau * sum_j ll_j,   tau = min(1, effective_beams / beams_used),
+/// because neighbouring beams share map error and the plain sum collapses the set onto a
+/// few particles (instead of AMCL's p += pz^3). The measurements behind each default:
+/// configs/experiments/README.md, "Why the defaults".
 struct LikelihoodConfig {
-  /// The sensor's own sigmas are Dekan et al.'s (5.69 mm / 3 mm). model_mismatch widens
-  /// the kernel for map error (a 5 cm map's kernel is otherwise ~15 mm wide, and a pose
-  /// 5 cm off scores like a random one). On the synthetic room: mismatch 0 / 0.02 / 0.05 /
-  /// 0.1 m tracked with RMSE 1.7 / 1.7 / 2.1 / 2.6 cm and localised globally from 6 / 7 /
-  /// 8 / 8 of 8 starts. 5 cm trades a few millimetres of tracking for a global basin.
+  /// Dekan et al.'s sensor sigmas; model_mismatch (metres) widens the kernel for map error,
+  /// which on a 5 cm map is larger than the sensor's.
   maps::BeamLikelihoodParams beam{.model_mismatch = 0.05};
   maps::LikelihoodFieldOptions table{};
   double effective_beams = 20.0;  ///< independent readings a scan is worth; <= 0: `tempering`
   double tempering = 1.0;         ///< fixed exponent in (0, 1], used when effective_beams <= 0
-  /// Adaptive safety net while the filter is not converged (as in adaptive-tempering SMC
-  /// samplers, Jasra et al. 2011): if one scan would cut the effective sample size below
-  /// min_ess_ratio times its value before the scan, tau is lowered (never raised) until it
-  /// does not. During global localisation and recovery the likelihood is far narrower than
-  /// the particle spacing; without the limit the set collapses onto one lucky particle,
-  /// possibly on the wrong mode of a near-symmetric room, within a scan or two. 0.5 (a scan
-  /// may at most halve N_eff) converged from all 8 starts of the synthetic test room in
-  /// 8-12 scans; 0.1 locked onto the 180-degree mirror pose from one start. Off once
-  /// converged (EstimateConfig), where it would only slow the pull of a compact cluster
-  /// that sits a little off. 0 disables it.
+  /// While not converged, tau is lowered (never raised) so that one scan keeps at least
+  /// this fraction of the effective sample size (adaptive tempering, Jasra et al. 2011):
+  /// a global search must not collapse onto one lucky particle. 0 disables it.
   double min_ess_ratio = 0.5;
   BeamSelection selection{};
   /// 0 accepts any beam count; otherwise update() rejects (std::invalid_argument) a scan
@@ -78,59 +55,20 @@ struct KldConfig {
   double bin_theta = 10.0 * std::numbers::pi / 180.0;  ///< radians, heading bin width
 };
 
-/// Augmented MCL (Probabilistic Robotics, Table 8.3): short- and long-term averages of the
-/// measurement likelihood; when the short-term one falls below the long-term one, each
-/// resampled particle is, with probability max(0, 1 - w_fast / w_slow), a uniform draw
-/// over free space. 0 < alpha_slow << alpha_fast < 1. pgmcl's deviations, each because a
-/// synthetic kidnapping did not recover without it:
-///  - the likelihood averaged is the per-beam geometric mean p(z | x)^(1/M), so the rate
-///    does not depend on the beam count;
-///  - the averages start at the first converged update (set_pose() with a small
-///    covariance counts), not during a global search;
-///  - injected poses take part in KLD-sampling's bin count, so a lost filter gets more
-///    particles (as in AMCL) instead of KLD's minimum;
-///  - after an update that injected, w_fast is reset to w_slow: injection then comes in
-///    bursts of at most ~alpha_fast of the set, and between bursts the set can
-///    concentrate (continuous injection at the raw rate replaced ~70 % of the set every
-///    scan and never converged);
-///  - probation (added after long real-log tracking diverged with the textbook scheme):
-///    the particles injected by a resampling, and their descendants, are "on probation"
-///    for `probation` measurement updates, during which all of them together may hold at
-///    most `probation_weight` of the weight (their relative weights are kept, so the
-///    best-fitting lineages still multiply). Only a lineage that keeps fitting after that
-///    competes freely. Why: on the SICK logs the per-beam fit at the true pose varies by
-///    a factor of 25-100 over a run (fr079: w_fast / w_slow between 0.04 and 11 while
-///    tracking within 16 cm; intel: 0.28 for a minute), so injection fires in ordinary
-///    tracking, and a few scans fit the map badly even at the true pose (intel ~790 s:
-///    best tracked particle -290 nats, usually +150), where one random pose out of ~2000
-///    fits far better and took over: ATE 1.6 m intel, 9.1 m fr079 (1000 particles, 90
-///    beams, realistic odometry; configs/experiments/README.md). A single scan cannot
-///    tell the two apart (a fixed log-weight handicap for injected poses: intel still
-///    diverged at 40 nats, fr079 needed 150, the depot kidnapping no longer recovered at
-///    80); the wrong pose's fit falls behind within a few updates as the view changes.
-///    probation 3 / 6 / 10 / 15 (weight 0.1): intel 0.033 m from 3 on; fr079 8.3 / 6.9 / 0.043 /
-///    0.043 m; fr079 biased odometry 5.7 m at 10, 0.044 m at 15. Cost: the depot
-///    kidnapping (closed-loop test) re-localised at 20.5 s (10) / 21.1 s (15) instead of
-///    18.6 s. Rejected: injecting only below threshold * w_slow (threshold 0.5 and 0.3
-///    still diverged on fr079 and the depot kidnapping never recovered, because the
-///    bursts shrink to a few particles); a faster alpha_slow (0.01, 0.03: still
-///    diverged). `threshold` is kept as an option; 1 is Table 8.3.
-///    probation 15 was the default until fixed particle counts (KLD off) were swept: fr079
-///    with 1000 particles and 90 beams still diverged (11.0 m ATE; 1.25 m on its first 1200
-///    scans); 30 tracks there (0.043 m) and on intel / aces / csail-raw with KLD on and off
-///    (0.030-0.101 m, none worse than at 15).
-///    probation_weight 0.1 / 0.05 / 0.02 in the clutter test (tests/mcl): max error 0.78-1.0
-///    / 0.38-0.85 / 0.15-0.51 m (seeds 1-4; recovery off 0.09-0.12 m), because with more
-///    than 1 - EstimateConfig::converged_weight on probation the filter counts as not
-///    converged and limits the tempering; real logs and kidnappings: no change (within
-///    1 mm ATE, same recovery times).
+/// Augmented MCL (Probabilistic Robotics, Table 8.3): when the short-term average of the
+/// per-beam likelihood falls below the long-term one, resampled particles are redrawn
+/// uniformly over free space with probability max(0, 1 - w_fast / w_slow). pgmcl's
+/// deviations (averages of the per-beam geometric mean, started at convergence, injection
+/// in bursts, injected poses in KLD's bins) and the probation that keeps a random pose from
+/// taking over a good track: mcl/README.md; the runs that chose the numbers:
+/// configs/experiments/README.md.
 struct RecoveryConfig {
   bool enabled = true;
   double alpha_slow = 0.001;  ///< long-term average rate (per measurement update)
   double alpha_fast = 0.1;    ///< short-term average rate (per measurement update)
-  /// Inject with probability max(0, 1 - w_fast / (threshold * w_slow)); in (0, 1].
-  double threshold = 1.0;
-  std::size_t probation = 30;      ///< measurement updates an injected lineage waits, <= 255
+  /// Measurement updates a redrawn lineage waits before it competes freely, <= 255: one
+  /// scan that fits badly at the true pose must not hand the set to a random pose.
+  std::size_t probation = 30;
   double probation_weight = 0.02;  ///< largest total weight of the lineages on probation
 };
 

@@ -43,7 +43,6 @@ struct UpdateResult {
 
   SkipReason skipped = SkipReason::kNone;
   bool motion_applied = false;
-  bool measured = false;  ///< the weights were updated from this scan
   bool resampled = false;
   double n_eff = 0.0;         ///< 1 / sum w^2 after the measurement update, before resampling
   double tempering = 0.0;     ///< exponent tau used for this scan (0 when not measured)
@@ -73,6 +72,12 @@ struct UpdateResult {
   bool searched = false;   ///< a scan-to-map search ran this update (global or rescue)
 
   UpdateTimings timings{};
+
+  /// The weights were updated from this scan: nothing skipped it and it had beams to score
+  /// (false for the state after construction, set_pose() or global_localize()).
+  [[nodiscard]] bool measured() const noexcept {
+    return skipped == SkipReason::kNone && beams_used > 0;
+  }
 };
 
 }  // namespace pgmcl

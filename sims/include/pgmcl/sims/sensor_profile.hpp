@@ -32,10 +32,9 @@ struct SensorProfile {
   void validate() const;
 
   /// A scan with this geometry; every range set to range_max ("no return").
-  [[nodiscard]] LaserScan make_scan(double stamp, const Pose2& sensor_pose = {}) const;
+  [[nodiscard]] LaserScan make_scan(const Pose2& sensor_pose = {}) const;
   /// A scan with this geometry and the given ranges (size must equal beam_count; throws).
-  [[nodiscard]] LaserScan make_scan(double stamp, std::vector<float> ranges,
-                                    const Pose2& sensor_pose = {}) const;
+  [[nodiscard]] LaserScan make_scan(std::vector<float> ranges, const Pose2& sensor_pose = {}) const;
 };
 
 /// Hokuyo UTM-30LX per Dekan et al., Table 1: 270 deg at 0.25 deg (1081 beams, -135..135

@@ -77,12 +77,13 @@ struct RobotLaserExtras {
   double turn_axis = 0.0;            ///< as logged
 };
 
-/// One laser message. scan.stamp is the ipc timestamp; scan.angle_min / angle_increment /
+/// One laser message, stamped with its ipc timestamp; scan.angle_min / angle_increment /
 /// range_max come from the SICK convention (FLASER/RLASER) or from the logged config
 /// (ROBOTLASER1/RAWLASERn: start_angle, angular_resolution, maximum_range).
 struct CarmenScan {
   LaserMessage message = LaserMessage::kFlaser;
   LaserScan scan;
+  double stamp = 0.0;  ///< seconds (ipc timestamp)
   LaserConfig config;
   std::vector<float> remissions;  ///< ROBOTLASER1/RAWLASERn only
   bool has_poses = true;          ///< false for RAWLASERn, which log no pose

@@ -22,10 +22,10 @@ namespace pgmcl::io {
 /// Builds a record for an engine/simulator scan taken at robot (odometry) pose `odom_pose`:
 /// FLASER when FLASER reproduces the scan (SICK angles, laser mounted facing forward on the
 /// robot's x axis), else ROBOTLASER1, which logs start angle, resolution, maximum range and
-/// the laser pose. laser_pose = odom_pose * scan.sensor_pose; logger_stamp = scan.stamp.
+/// the laser pose. laser_pose = odom_pose * scan.sensor_pose; both stamps are `stamp`.
 /// For FLASER, also put set_front_laser_params() into the log's params so the reader restores
 /// range_max and the mounting offset.
-[[nodiscard]] CarmenScan make_scan_record(const LaserScan& scan, const Pose2& odom_pose,
+[[nodiscard]] CarmenScan make_scan_record(const LaserScan& scan, double stamp, const Pose2& odom_pose,
                                           std::string host = "pgmcl");
 /// PARAM robot_front_laser_max = scan.range_max, robot_frontlaser_offset = scan.sensor_pose.x.
 void set_front_laser_params(std::map<std::string, std::string>& params, const LaserScan& scan);

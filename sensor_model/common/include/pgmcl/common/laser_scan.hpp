@@ -8,11 +8,11 @@
 
 namespace pgmcl {
 
-/// Beam i points at angle_min + i * angle_increment in the sensor frame.
+/// Beam i points at angle_min + i * angle_increment in the sensor frame. The scan's time
+/// is not part of it: Localizer::update() takes it (a log record keeps its own stamp).
 /// Invalid readings (NaN, Inf, < range_min, >= range_max) are skipped by the filter and
 /// counted in UpdateResult; they are never an error.
 struct LaserScan {
-  double stamp = 0.0;            ///< seconds
   double angle_min = 0.0;        ///< radians, first beam in the sensor frame
   double angle_increment = 0.0;  ///< radians between consecutive beams
   double range_min = 0.1;        ///< metres; readings below are invalid

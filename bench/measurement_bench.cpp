@@ -132,7 +132,7 @@ void run_config(benchmark::State& state, const Config& c) {
   auto shared = w.fields[static_cast<int>(c.yardstick ? TableKind::kIsotropic : c.kind)];
   pgmcl::MeasurementModel model(shared);
   std::vector<std::uint32_t> valid, selected;
-  pgmcl::valid_beam_indices(s, f.params().max_range, valid);
+  pgmcl::valid_beam_indices(s, f.model().params().max_range, valid);
   pgmcl::select_beams(valid, {pgmcl::BeamSelectionMode::kAll, 1, 1}, selected);
   model.prepare(s, selected);
   const std::size_t m = model.beams().size();

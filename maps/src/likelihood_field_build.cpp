@@ -43,9 +43,6 @@ ObstacleScan scan_obstacles(const OccupancyGrid& grid, bool all_obstacles, Table
   const std::size_t uw = static_cast<std::size_t>(w);
   const std::size_t stride = uw * static_cast<std::size_t>(h);
   ObstacleScan out;
-  out.words_per_row = (w + 63) / 64;
-  const auto wpr = static_cast<std::size_t>(out.words_per_row);
-  out.bits.assign(wpr * static_cast<std::size_t>(h), 0);
   out.runs.resize(static_cast<std::size_t>(h));
 #ifdef _OPENMP
 #pragma omp parallel
@@ -59,7 +56,6 @@ ObstacleScan scan_obstacles(const OccupancyGrid& grid, bool all_obstacles, Table
       const std::int8_t* cur = cells + static_cast<std::size_t>(r) * uw;
       const std::int8_t* prev = r > 0 ? cur - w : nullptr;
       const std::int8_t* next = r + 1 < h ? cur + w : nullptr;
-      std::uint64_t* bits = out.bits.data() + static_cast<std::size_t>(r) * wpr;
       if (prev != nullptr && next != nullptr) {
         for (int c = 0; c < w; ++c)
           obs3[static_cast<std::size_t>(c)] =
@@ -70,7 +66,6 @@ ObstacleScan scan_obstacles(const OccupancyGrid& grid, bool all_obstacles, Table
       auto& runs = out.runs[static_cast<std::size_t>(r)];
       for (int c = 0; c < w; ++c) {
         if (cur[c] < thr) continue;
-        bits[c >> 6] |= std::uint64_t{1} << (c & 63);
         const bool interior = c > 0 && c + 1 < w && obs3[static_cast<std::size_t>(c) - 1] &&
                               obs3[static_cast<std::size_t>(c)] &&
                               obs3[static_cast<std::size_t>(c) + 1];

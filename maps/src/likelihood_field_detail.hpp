@@ -41,15 +41,13 @@ struct CellMetric {
 struct ObstacleScan {
   /// Per row: runs [first, last] of consecutive columns to stamp, left to right.
   std::vector<std::vector<std::array<std::int32_t, 2>>> runs;
-  std::vector<std::uint64_t> bits;  ///< obstacle bitmask, padded rows
-  int words_per_row = 0;
   std::size_t sources_total = 0;
 };
 
 /// How the scan initialises the table while it reads the grid.
 enum class TableInit : std::uint8_t { kBytes, kOffsets };
 
-/// Reads the grid once: fills the obstacle bitmask, the stamp sources (boundary cells, or
+/// Reads the grid once: fills the stamp sources (boundary cells, or
 /// all obstacle cells when `all_obstacles`), and initialises the table: kBytes writes q = 0
 /// on obstacles and `background` elsewhere into each of `planes` planes of `table`;
 /// kOffsets writes (0, 0) on obstacles and (kNoObstacle, 0) elsewhere into `offsets`.

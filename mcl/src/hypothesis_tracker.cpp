@@ -132,7 +132,7 @@ void HypothesisTracker::global_step(std::size_t particles, HypothesisStep& out) 
 HypothesisTracker::Scored HypothesisTracker::climb(const Pose2& start) const {
   // Coordinate descent on the exact table cost, two kernel sigmas and about two degrees per
   // step, then half steps: follows a hypothesis through the odometry error of one update.
-  const double sigma = field_->stats().sigma_along_eff;
+  const double sigma = field_->model().sigma_along_eff();
   Scored best{start, probe_.score_pose(start.x, start.y, start.theta)};
   for (const double step : {2.0 * sigma, sigma}) {
     const double dth = step / 3.0;  // moves an endpoint 3 m away by one step
@@ -179,7 +179,7 @@ double HypothesisTracker::evidence(std::uint32_t q_ref, std::uint32_t q) const n
   // The filter's own weighting, tau * (ll - ll_ref) (LikelihoodConfig), on the probe beams.
   const auto m = static_cast<double>(probe_.beams().size());
   const double tau = tau_beams_ > 0.0 ? std::min(1.0, tau_beams_ / m) : tempering_;
-  return tau * field_->stats().nats_per_step *
+  return tau * field_->model().nats_per_step() *
          (static_cast<double>(q_ref) - static_cast<double>(q));
 }
 

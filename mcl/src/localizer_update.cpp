@@ -152,7 +152,7 @@ void Localizer::motion_update(const Pose2& odom_prev, const Pose2& odom_now) {
 }
 
 bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, UpdateResult& r) {
-  valid_beam_indices(scan, field_->params().max_range, ws_.valid_beams);
+  valid_beam_indices(scan, field_->model().params().max_range, ws_.valid_beams);
   r.beams_invalid = scan.ranges.size() - ws_.valid_beams.size();
   select_beams(ws_.valid_beams, cfg_.likelihood.selection, ws_.selected_beams);
   r.beams_used = ws_.selected_beams.size();

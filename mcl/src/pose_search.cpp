@@ -10,50 +10,6 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
-// Per-cell q that any beam direction can at best read: the table itself for the
-// isotropic kind, the minimum over the direction planes for the oriented kind, and the
-// offset field's q at its smallest Mahalanobis distance for the offset kind.
-std::vector<std::uint8_t> best_case_table(const maps::LikelihoodField& f) {
-  const std::size_t n = static_cast<std::size_t>(f.width()) * static_cast<std::size_t>(f.height());
-  std::vector<std::uint8_t> q(n);
-  switch (f.kind()) {
-    case maps::TableKind::kIsotropic: {
-      const maps::IsotropicView v = f.isotropic();
-      std::copy_n(v.q, n, q.begin());
-      break;
-    }
-    case maps::TableKind::kOrientedBins: {
-      const maps::OrientedView v = f.oriented();
-      std::copy_n(v.q, n, q.begin());
-      for (int b = 1; b < v.bins; ++b)
-        for (std::size_t i = 0; i < n; ++i)
-          q[i] = std::min(q[i], v.q[static_cast<std::size_t>(b) * v.plane_stride + i]);
-      break;
-    }
-    case maps::TableKind::kOffsetField: {
-      const maps::OffsetView v = f.offset();
-      const float inv_var = std::max(v.inv_var_along, v.inv_var_across);
-      for (std::size_t i = 0; i < n; ++i) {
-        const std::int8_t dc = v.off[2 * i];
-        if (dc == maps::OffsetView::kNoObstacle) {
-          q[i] = v.background;
-          continue;
-        }
-        const auto dx = static_cast<float>(dc), dy = static_cast<float>(v.off[2 * i + 1]);
-        // The endpoint may sit anywhere in its cell: half a cell closer along each axis.
-        const float ax = std::max(0.0f, std::abs(dx) - 0.5f),
-                    ay = std::max(0.0f, std::abs(dy) - 0.5f);
-        const float idx =
-            (ax * ax + ay * ay) * std::min(v.inv_var_along, inv_var) * v.lut_steps_per_unit;
-        q[i] = idx < static_cast<float>(v.lut_size - 1) ? v.lut[static_cast<int>(idx)]
-                                                        : v.lut[v.lut_size - 1];
-      }
-      break;
-    }
-  }
-  return q;
-}
-
 // Minimum over the fine cells [C * s, C * s + 2 s) of one axis, for C in [-1, ceil(n / s)),
 // stored at C + 1; empty windows read `background`.
 template <class Get, class Put>
@@ -74,23 +30,13 @@ PoseSearch::PoseSearch(const maps::LikelihoodField& field,
     : resolution_(field.resolution()),
       width_(field.width()),
       height_(field.height()),
-      nats_per_step_(field.stats().nats_per_step),
+      nats_per_step_(field.model().nats_per_step()),
       cfg_(cfg) {
   if (!(std::isfinite(cfg.leaf_size) && cfg.leaf_size > 0.0) || cfg.root_levels < 1 ||
       cfg.max_beams == 0 || !(cfg.min_angle_step > 0.0) ||
       !(cfg.max_angle_step >= cfg.min_angle_step))
     throw std::invalid_argument("PoseSearch: invalid PoseSearchConfig");
-  switch (field.kind()) {
-    case maps::TableKind::kIsotropic:
-      background_ = field.isotropic().background;
-      break;
-    case maps::TableKind::kOrientedBins:
-      background_ = field.oriented().background;
-      break;
-    case maps::TableKind::kOffsetField:
-      background_ = field.offset().background;
-      break;
-  }
+  background_ = field.model().background();
 
   leaf_level_ = std::max(1, static_cast<int>(std::lround(std::log2(cfg.leaf_size / resolution_))));
   leaf_level_ = std::min(leaf_level_, 20);
@@ -100,7 +46,7 @@ PoseSearch::PoseSearch(const maps::LikelihoodField& field,
     --root_level;
 
   // Leaf level straight from the fine table, separably; higher levels from the one below.
-  const std::vector<std::uint8_t> fine = best_case_table(field);
+  const std::vector<std::uint8_t> fine = field.best_case_table();
   {
     Level lv;
     lv.shift = leaf_level_;

@@ -1,5 +1,5 @@
 // LikelihoodField: names, validation, the model's constants, size limits, the isotropic
-// fallback, views outside the map, work skipping (cells_computed) and build times.
+// fallback, the kernels outside the map, work skipping (cells_computed) and build times.
 // Accuracy against the exact oracle: likelihood_field_accuracy_test.cpp.
 
 #include "pgmcl/maps/likelihood_field.hpp"
@@ -24,10 +24,13 @@
 namespace pgmcl::maps {
 namespace {
 
+using lf_test::BeamLikelihoodParams;
 using lf_test::check_isotropic_everywhere;
 using lf_test::ratio;
 using lf_test::room;
+using lf_test::table_q;
 using lf_test::with_kind;
+using testkit::bin_centre;
 constexpr double kPi = std::numbers::pi;
 namespace paper = sensor_model::paper;
 
@@ -93,27 +96,35 @@ TEST(LikelihoodField, TooLargeTableThrowsLengthErrorWithByteCount) {
   EXPECT_NO_THROW(LikelihoodField(g, BeamLikelihoodParams{}, o));
 }
 
-// ll_max, background and step from the formula in the header, evaluated by hand.
-TEST(LikelihoodField, ModelMatchesHandComputedMixture) {
-  const BeamLikelihoodParams p;
+// The tables rasterise sensor_model::BeamLikelihood at the grid's resolution: the same
+// constants, and around a lone obstacle every isotropic entry is the model's quantised value
+// at the distance between cell centres (sigma_along_eff, see LikelihoodField).
+TEST(LikelihoodField, TablesHoldTheSensorModelsQuantisedFunction) {
+  BeamLikelihoodParams p;
+  p.model_mismatch = 0.01;
   for (double res : {0.005, 0.05}) {
-    const LikelihoodField f(OccupancyGrid(8, 8, res, {}, kFree), p);
-    const double sa = std::sqrt(paper::kSigmaAlong * paper::kSigmaAlong + res * res / 12);
-    const double sc = std::sqrt(paper::kSigmaAcross * paper::kSigmaAcross + res * res / 12);
-    EXPECT_DOUBLE_EQ(f.stats().sigma_along_eff, sa);
-    EXPECT_DOUBLE_EQ(f.stats().sigma_across_eff, sc);
-    const double floor = p.w_rand / p.max_range;
-    const double peak = p.w_hit / (std::sqrt(2 * kPi) * sa);
-    EXPECT_NEAR(f.stats().ll_max, std::log(peak + floor), 1e-12);
-    EXPECT_NEAR(f.stats().ll_background, std::log(floor), 1e-12);
-    EXPECT_NEAR(f.stats().nats_per_step, (std::log(peak + floor) - std::log(floor)) / 255, 1e-12);
-    EXPECT_NEAR(f.log_likelihood_of_m2(2.25), std::log(peak * std::exp(-1.125) + floor), 1e-12);
-    EXPECT_EQ(f.quantise_m2(0.0), 0);
-    EXPECT_EQ(f.quantise_m2(16.0), 255);  // reach_sigmas = 4: background from m2 = 16 on
-    EXPECT_LT(f.quantise_m2(15.99), 255);
-    EXPECT_NEAR(f.log_likelihood(255), std::log(floor), 1e-12);
-    std::cout << "[ scale    ] res " << res << " m: sigma_eff " << sa * 1e3 << " / " << sc * 1e3
-              << " mm, " << f.stats().nats_per_step << " nats per step\n";
+    SCOPED_TRACE(res);
+    OccupancyGrid g(41, 41, res, {}, kFree);
+    g.set(20, 20, kOccupied);
+    LikelihoodFieldOptions o;
+    o.reach_sigmas = 3.5;
+    const LikelihoodField f(g, p, o);
+    const sensor_model::BeamLikelihood m(p, res, 3.5);
+    EXPECT_EQ(f.model().sigma_along_eff(), m.sigma_along_eff());
+    EXPECT_EQ(f.model().sigma_across_eff(), m.sigma_across_eff());
+    EXPECT_EQ(f.model().ll_max(), m.ll_max());
+    EXPECT_EQ(f.model().nats_per_step(), m.nats_per_step());
+    EXPECT_EQ(f.model().background(), m.background());
+    const double s = m.sigma_along_eff();
+    int inside = 0;
+    for (int r = 0; r < g.height(); ++r)
+      for (int c = 0; c < g.width(); ++c) {
+        const double d2 = ((c - 20) * (c - 20) + (r - 20) * (r - 20)) * res * res;
+        const std::uint8_t want = m.quantise_m2(d2 / (s * s));
+        inside += want < m.background() ? 1 : 0;
+        ASSERT_EQ(table_q(f, c + 0.5f, r + 0.5f, 0.3), want) << c << ", " << r;
+      }
+    EXPECT_GT(inside, 1);
   }
 }
 
@@ -125,7 +136,6 @@ TEST(LikelihoodField, OrientedFallsBackToIsotropicAt5cmButNotAt5mm) {
   EXPECT_EQ(coarse.kind(), TableKind::kIsotropic);
   EXPECT_EQ(coarse.stats().bytes, 60u * 40u);
   EXPECT_EQ(coarse.oriented().width, 0);  // the oriented view is empty: background only
-  EXPECT_EQ(coarse.oriented().lookup(5.5f, 5.5f, 0), coarse.oriented().background);
 
   const LikelihoodField fine(room(60, 40, 0.005, 1), BeamLikelihoodParams{},
                              with_kind(TableKind::kOrientedBins));
@@ -140,7 +150,7 @@ TEST(LikelihoodField, OrientedFallsBackToIsotropicAt5cmButNotAt5mm) {
   EXPECT_FALSE(forced.stats().orientation_skipped);
 }
 
-TEST(LikelihoodField, ViewsReturnBackgroundOutsideTheMapAndBeyondReach) {
+TEST(LikelihoodField, KernelsReadBackgroundOutsideTheMapAndBeyondReach) {
   OccupancyGrid g(200, 100, 0.005, {}, kFree);
   g.set(10, 10, kOccupied);
   for (TableKind k : {TableKind::kIsotropic, TableKind::kOrientedBins, TableKind::kOffsetField}) {
@@ -148,17 +158,7 @@ TEST(LikelihoodField, ViewsReturnBackgroundOutsideTheMapAndBeyondReach) {
     const LikelihoodField f(g, BeamLikelihoodParams{}, with_kind(k));
     ASSERT_EQ(f.kind(), k);
     const std::uint8_t bg = 255;
-    auto look = [&](float c, float r) -> std::uint8_t {
-      switch (k) {
-        case TableKind::kIsotropic:
-          return f.isotropic().lookup(c, r);
-        case TableKind::kOrientedBins:
-          return f.oriented().lookup(c, r, 3);
-        case TableKind::kOffsetField:
-          return f.offset().lookup(c, r, 0.6f, 0.8f);
-      }
-      return 0;
-    };
+    auto look = [&](float c, float r) { return table_q(f, c, r, std::atan2(0.8, 0.6)); };
     EXPECT_EQ(look(10.5f, 10.5f), 0);  // on the obstacle
     EXPECT_LT(look(11.5f, 10.5f), bg);
     for (auto [c, r] : {std::pair{-0.01f, 10.5f},
@@ -169,8 +169,9 @@ TEST(LikelihoodField, ViewsReturnBackgroundOutsideTheMapAndBeyondReach) {
                         {1e9f, 1e9f},
                         {150.5f, 50.5f}})
       EXPECT_EQ(look(c, r), bg) << c << ", " << r;
-    EXPECT_EQ(f.exact_log_likelihood(0.75, 0.25, 0.3), f.stats().ll_background);
-    EXPECT_EQ(f.exact_log_likelihood(-1e12, 5.0, 0.3), f.stats().ll_background);
+    const testkit::ExactLikelihood exact(g, f.model());
+    EXPECT_EQ(exact(0.75, 0.25, 0.3), f.model().ll_background());
+    EXPECT_EQ(exact(-1e12, 5.0, 0.3), f.model().ll_background());
     EXPECT_EQ(f.isotropic().width == 0, k != TableKind::kIsotropic);  // other views are empty
   }
 }
@@ -193,11 +194,11 @@ TEST(LikelihoodField, SingleObstacleComputesOnlyTheReachDisk) {
     for (int r = 0; r < g.height(); ++r)
       for (int c = 0; c < g.width(); ++c) {
         bool any = false;
-        if (k == TableKind::kIsotropic) any = f.isotropic().lookup(c + 0.5f, r + 0.5f) != 255;
+        if (k == TableKind::kIsotropic) any = table_q(f, c + 0.5f, r + 0.5f, 0.0) != 255;
         if (k == TableKind::kOffsetField)
           any = f.offset().off[2 * g.index(c, r)] != OffsetView::kNoObstacle;
         for (int b = 0; k == TableKind::kOrientedBins && b < f.oriented().bins; ++b)
-          any = any || f.oriented().lookup(c + 0.5f, r + 0.5f, b) != 255;
+          any = any || table_q(f, c + 0.5f, r + 0.5f, bin_centre(f, b)) != 255;
         non_background += any ? 1u : 0u;
       }
     EXPECT_EQ(f.stats().cells_computed, non_background);

@@ -1,6 +1,7 @@
 #pragma once
 // Shared helpers of the LikelihoodField tests: synthetic grids (never map files), a brute-force
-// oracle over all obstacle cells, and the isotropic-vs-EDT check.
+// oracle over all obstacle cells, and the isotropic-vs-EDT check (tables read through the
+// production kernels, testkit::table_q).
 
 #include <algorithm>
 #include <array>
@@ -10,8 +11,12 @@
 
 #include "pgmcl/maps/distance_transform.hpp"
 #include "pgmcl/maps/likelihood_field.hpp"
+#include "table_oracle.hpp"
 
 namespace pgmcl::maps::lf_test {
+
+using sensor_model::BeamLikelihoodParams;
+using testkit::table_q;
 
 // Room with thick outer walls, an inner wall, an L corner, a filled disk (interior obstacle
 // cells), a ring, scattered single obstacles and an unknown patch.
@@ -45,7 +50,7 @@ struct BruteForce {
   std::vector<std::array<double, 2>> obstacles;  // cell centres, metres
   double sa, sc;
   BruteForce(const OccupancyGrid& g, const LikelihoodField& f)
-      : sa(f.stats().sigma_along_eff), sc(f.stats().sigma_across_eff) {
+      : sa(f.model().sigma_along_eff()), sc(f.model().sigma_across_eff()) {
     for (int r = 0; r < g.height(); ++r)
       for (int c = 0; c < g.width(); ++c)
         if (g.occupied(c, r))
@@ -88,19 +93,19 @@ inline LikelihoodFieldOptions with_kind(TableKind k) {
 }
 
 inline double ratio(const LikelihoodField& f) {
-  return f.stats().sigma_along_eff / f.stats().sigma_across_eff;
+  return f.model().sigma_along_eff() / f.model().sigma_across_eff();
 }
 
 // The isotropic table is the EDT distance through the model: within step/2 everywhere.
 inline void check_isotropic_everywhere(const OccupancyGrid& g, const LikelihoodField& f) {
   const DistanceField df = euclidean_distance_transform(g);
-  const IsotropicView v = f.isotropic();
-  const double s = f.stats().sigma_along_eff / g.resolution();
-  const double tol = f.stats().nats_per_step / 2 + 1e-9;
+  const double s = f.model().sigma_along_eff() / g.resolution();
+  const double tol = f.model().nats_per_step() / 2 + 1e-9;
   for (int r = 0; r < g.height(); ++r)
     for (int c = 0; c < g.width(); ++c) {
       const double m2 = df.sq_dist_at(c, r) / (s * s);
-      ASSERT_NEAR(f.log_likelihood(v.lookup(c + 0.5f, r + 0.5f)), f.log_likelihood_of_m2(m2), tol)
+      ASSERT_NEAR(f.model().log_likelihood_of_q(table_q(f, c + 0.5f, r + 0.5f, 0.0)),
+                  f.model().log_likelihood_of_m2(m2), tol)
           << "cell (" << c << ", " << r << ")";
     }
 }

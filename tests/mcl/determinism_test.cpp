@@ -21,7 +21,7 @@ TEST_P(SerialVsParallel, SumsAreBitwiseEqual) {
   const test::World world = test::make_room(0.02);
   maps::LikelihoodFieldOptions opt;
   opt.kind = GetParam();
-  maps::BeamLikelihoodParams params;
+  sensor_model::BeamLikelihoodParams params;
   params.model_mismatch = 0.02;
   auto field = std::make_shared<const maps::LikelihoodField>(world.grid, params, opt);
   MeasurementModel model(field);

@@ -16,6 +16,7 @@
 #include "pgmcl/mcl/localizer.hpp"
 #include "pgmcl/mcl/measurement_model.hpp"
 #include "synthetic_world.hpp"
+#include "table_oracle.hpp"
 
 namespace pgmcl {
 namespace {
@@ -71,15 +72,16 @@ class MeasurementKinds : public ::testing::TestWithParam<KindCase> {
  protected:
   /// The table of `kind` on the world's grid.
   static std::shared_ptr<const maps::LikelihoodField> table(
-      const test::World& world, const maps::BeamLikelihoodParams& params, maps::TableKind kind) {
+      const test::World& world, const sensor_model::BeamLikelihoodParams& params,
+      maps::TableKind kind) {
     maps::LikelihoodFieldOptions opt;
     opt.kind = kind;
     return std::make_shared<const maps::LikelihoodField>(world.grid, params, opt);
   }
   /// The paper's sigmas with a 3 % model mismatch, except for the oriented kind: mismatch
   /// would make its kernel isotropic (and the table fall back).
-  static maps::BeamLikelihoodParams mismatched_params(maps::TableKind kind) {
-    maps::BeamLikelihoodParams params;
+  static sensor_model::BeamLikelihoodParams mismatched_params(maps::TableKind kind) {
+    sensor_model::BeamLikelihoodParams params;
     params.model_mismatch = kind == maps::TableKind::kOrientedBins ? 0.0 : 0.03;
     return params;
   }
@@ -89,7 +91,7 @@ class MeasurementKinds : public ::testing::TestWithParam<KindCase> {
 TEST_P(MeasurementKinds, KnownPoseBeatsOffsets) {
   const KindCase kc = GetParam();
   const test::World world = test::make_room(kc.resolution);
-  const maps::BeamLikelihoodParams params;  // the paper's sigmas, no mismatch
+  const sensor_model::BeamLikelihoodParams params;  // the paper's sigmas, no mismatch
   auto field = table(world, params, kc.kind);
   ASSERT_EQ(field->kind(), kc.kind);
   MeasurementModel model(field);
@@ -142,18 +144,7 @@ std::uint32_t brute_force_sum_q(const maps::LikelihoodField& f, const LaserScan&
     const double a = sensor.theta + scan.beam_angle(i), r = scan.ranges[i];
     const auto col = static_cast<float>((sensor.x + r * std::cos(a)) / f.resolution());
     const auto row = static_cast<float>((sensor.y + r * std::sin(a)) / f.resolution());
-    switch (f.kind()) {
-      case maps::TableKind::kIsotropic:
-        sum += f.isotropic().lookup(col, row);
-        break;
-      case maps::TableKind::kOrientedBins:
-        sum += f.oriented().lookup(col, row, f.oriented().bin_of(static_cast<float>(a)));
-        break;
-      case maps::TableKind::kOffsetField:
-        sum += f.offset().lookup(col, row, static_cast<float>(std::cos(a)),
-                                 static_cast<float>(std::sin(a)));
-        break;
-    }
+    sum += testkit::table_q(f, col, row, a);
   }
   return sum;
 }
@@ -163,7 +154,7 @@ std::uint32_t brute_force_sum_q(const maps::LikelihoodField& f, const LaserScan&
 TEST_P(MeasurementKinds, SumMatchesOracles) {
   const KindCase kc = GetParam();
   const test::World world = test::make_room(kc.resolution);
-  const maps::BeamLikelihoodParams params = mismatched_params(kc.kind);
+  const sensor_model::BeamLikelihoodParams params = mismatched_params(kc.kind);
   auto field = table(world, params, kc.kind);
   ASSERT_EQ(field->kind(), kc.kind);
   MeasurementModel model(field);
@@ -182,10 +173,10 @@ TEST_P(MeasurementKinds, SumMatchesOracles) {
     EXPECT_LE(std::abs(static_cast<long>(q) - static_cast<long>(q_brute)), 255) << q_brute;
     double exact = 0.0;
     const Pose2 sensor = p.compose(scan.sensor_pose);
+    const testkit::ExactLikelihood exact_ll(world.grid, field->model());
     for (std::uint32_t i : sel) {
       const double a = sensor.theta + scan.beam_angle(i), r = scan.ranges[i];
-      exact +=
-          field->exact_log_likelihood(sensor.x + r * std::cos(a), sensor.y + r * std::sin(a), a);
+      exact += exact_ll(sensor.x + r * std::cos(a), sensor.y + r * std::sin(a), a);
     }
     const double per_beam = (model.log_likelihood(q) - exact) / static_cast<double>(sel.size());
     // Table sampling error (one value per cell; larger for kernels narrow against a cell).
@@ -195,14 +186,14 @@ TEST_P(MeasurementKinds, SumMatchesOracles) {
   }
 }
 
-// The hot loop's chunked passes against the views' own lookup(), per beam, with the same
-// float arithmetic: the sums must agree exactly, also for poses partly or wholly off the
-// map, for every orientation bin, and for poses so far off (or NaN) that the kernels take
-// their clamped path (MeasurementModel skips the clamps below |cell| + reach < 5e8).
-TEST_P(MeasurementKinds, KernelsMatchViewLookupsExactly) {
+// The hot loop's chunked passes against plain per-beam readers (testkit::reference_q) with
+// the same float arithmetic: the sums must agree exactly, also for poses partly or wholly
+// off the map, for every orientation bin, and for poses so far off (or NaN) that the kernels
+// take their clamped path (the kernels skip the clamps below |cell| + reach < 5e8).
+TEST_P(MeasurementKinds, KernelsMatchPlainLookupsExactly) {
   const KindCase kc = GetParam();
   const test::World world = test::make_room(kc.resolution);
-  const maps::BeamLikelihoodParams params = mismatched_params(kc.kind);
+  const sensor_model::BeamLikelihoodParams params = mismatched_params(kc.kind);
   auto field = table(world, params, kc.kind);
   ASSERT_EQ(field->kind(), kc.kind);
   MeasurementModel model(field);
@@ -238,7 +229,7 @@ TEST_P(MeasurementKinds, KernelsMatchViewLookupsExactly) {
       const float row = py + (s * b.ex[j] + c * b.ey[j]);
       switch (field->kind()) {
         case maps::TableKind::kIsotropic:
-          expect += field->isotropic().lookup(col, row);
+          expect += testkit::reference_q(field->isotropic(), col, row);
           break;
         case maps::TableKind::kOrientedBins: {
           const maps::OrientedView v = field->oriented();
@@ -246,12 +237,12 @@ TEST_P(MeasurementKinds, KernelsMatchViewLookupsExactly) {
           tb += tb < 0.0f ? static_cast<float>(v.bins) : 0.0f;
           int bin = static_cast<int>(tb + b.bin[j]);
           while (bin >= v.bins) bin -= v.bins;
-          expect += v.lookup(col, row, bin);
+          expect += testkit::reference_q(v, col, row, bin);
           break;
         }
         case maps::TableKind::kOffsetField:
-          expect += field->offset().lookup(col, row, c * b.ux[j] - s * b.uy[j],
-                                           s * b.ux[j] + c * b.uy[j]);
+          expect += testkit::reference_q(field->offset(), col, row, c * b.ux[j] - s * b.uy[j],
+                                         s * b.ux[j] + c * b.uy[j]);
           break;
       }
     }
@@ -272,8 +263,9 @@ INSTANTIATE_TEST_SUITE_P(AllKinds, MeasurementKinds,
 TEST(MeasurementStress, PaperSigmaFiveMillimetreMapStaysFinite) {
   const test::World world = test::make_small_room(0.005);
   LocalizerConfig cfg;
-  cfg.likelihood.beam = maps::BeamLikelihoodParams{};  // sigma_along = 5.6894 mm, no mismatch
-  cfg.likelihood.effective_beams = 0.0;                // plain product of 1081 beams
+  cfg.likelihood.beam =
+      sensor_model::BeamLikelihoodParams{};  // sigma_along = 5.6894 mm, no mismatch
+  cfg.likelihood.effective_beams = 0.0;      // plain product of 1081 beams
   cfg.likelihood.tempering = 1.0;
   cfg.likelihood.selection.mode = BeamSelectionMode::kAll;
   cfg.filter.particles = 500;

@@ -28,7 +28,7 @@ struct Fixture {
   MeasurementModel model;
   Fixture()
       : field(std::make_shared<const maps::LikelihoodField>(
-            world.grid, maps::BeamLikelihoodParams{.model_mismatch = 0.05})),
+            world.grid, sensor_model::BeamLikelihoodParams{.model_mismatch = 0.05})),
         free_cells(free_cell_indices(world.grid)),
         model(field) {}
 

@@ -24,6 +24,7 @@
 #include "pgmcl/mcl/measurement_model.hpp"
 #include "pgmcl/mcl/weights.hpp"
 #include "stress_world.hpp"
+#include "table_oracle.hpp"
 
 namespace pgmcl::stress {
 namespace {
@@ -47,7 +48,7 @@ double edge_distance(double x) {
 }
 
 // 1081 beams, paper sigmas, 5 mm cells, oriented table (anisotropic at 5 mm: no fallback).
-// Oracle: LikelihoodField::exact_log_likelihood at the centre of the endpoint's cell and the
+// Oracle: testkit::ExactLikelihood at the centre of the endpoint's cell and the
 // centre of the beam's orientation bin, which is what a table entry samples. Tolerance:
 // every beam within half a quantisation step (nats_per_step / 2); the sum over M beams
 // within M * step / 2 (worst case) and within 6 standard deviations of the sum of M
@@ -56,10 +57,11 @@ TEST(StressLikelihood, ExactSumOf1081BeamsAgreesWithQuantisedTable_5mm) {
   const double res = 0.005;
   const Room room = make_room(4.0, 3.0, res);
   const auto field = std::make_shared<const LikelihoodField>(
-      room.grid, maps::BeamLikelihoodParams{}, kind_opts(TableKind::kOrientedBins));
+      room.grid, sensor_model::BeamLikelihoodParams{}, kind_opts(TableKind::kOrientedBins));
   ASSERT_EQ(field->kind(), TableKind::kOrientedBins);
   const maps::OrientedView v = field->oriented();
-  const double step = field->stats().nats_per_step;
+  const double step = field->model().nats_per_step();
+  const testkit::ExactLikelihood exact_ll(room.grid, field->model());
   const Scanner scanner(room.grid, kPaperSigmaAlong);
   ASSERT_EQ(scanner.profile().beam_count, 1081);
   MeasurementModel model(field);
@@ -68,7 +70,7 @@ TEST(StressLikelihood, ExactSumOf1081BeamsAgreesWithQuantisedTable_5mm) {
   for (const Pose2& pose :
        {Pose2{1.3, 1.1, 0.3}, Pose2{3.2, 2.5, -2.9}, Pose2{0.8, 2.9, kPi}, Pose2{2.6, 0.6, 1.6}}) {
     const LaserScan scan = scanner.scan(pose, rng);
-    valid_beam_indices(scan, field->params().max_range, valid);
+    valid_beam_indices(scan, field->model().params().max_range, valid);
     ASSERT_GT(valid.size(), 1000u) << "closed room: nearly every beam hits";
     const Pose2 sensor = pose.compose(scan.sensor_pose);
     double sum_table = 0.0, sum_exact = 0.0, sum_sq = 0.0, sum_exact_endpoint = 0.0;
@@ -80,17 +82,17 @@ TEST(StressLikelihood, ExactSumOf1081BeamsAgreesWithQuantisedTable_5mm) {
       const double row = (sensor.y + r * std::sin(a)) / res;
       const int c = maps::floor_to_cell(static_cast<float>(col));
       const int rr = maps::floor_to_cell(static_cast<float>(row));
-      const int b = v.bin_of(static_cast<float>(a));
-      const std::uint8_t q = v.lookup(static_cast<float>(col), static_cast<float>(row), b);
-      const double table = field->log_likelihood(q);
-      const double exact =
-          field->exact_log_likelihood((c + 0.5) * res, (rr + 0.5) * res, (b + 0.5) * kPi / v.bins);
+      const int b = static_cast<int>(maps::direction_in_bins(a, v.bins));
+      const std::uint8_t q =
+          testkit::reference_q(v, static_cast<float>(col), static_cast<float>(row), b);
+      const double table = field->model().log_likelihood_of_q(q);
+      const double exact = exact_ll((c + 0.5) * res, (rr + 0.5) * res, (b + 0.5) * kPi / v.bins);
       ASSERT_NEAR(table, exact, step / 2 + 1e-9) << "beam " << j << " cell " << c << "," << rr;
       sum_table += table;
       sum_exact += exact;
       sum_sq += (table - exact) * (table - exact);
       sum_q += q;
-      sum_exact_endpoint += field->exact_log_likelihood(col * res, row * res, a);
+      sum_exact_endpoint += exact_ll(col * res, row * res, a);
       const double bin_pos = wrap_angle(a) * v.bins / kPi;
       near_edges +=
           (edge_distance(col) < 1e-3 || edge_distance(row) < 1e-3 || edge_distance(bin_pos) < 1e-3)
@@ -122,14 +124,14 @@ TEST(StressLikelihood, WeightsOf1081BeamScoresStayFiniteAcrossThousandsOfNats) {
   const double res = 0.005;
   const Room room = make_room(4.0, 3.0, res);
   const auto field =
-      std::make_shared<const LikelihoodField>(room.grid, maps::BeamLikelihoodParams{});
+      std::make_shared<const LikelihoodField>(room.grid, sensor_model::BeamLikelihoodParams{});
   const Scanner scanner(room.grid, kPaperSigmaAlong);
   MeasurementModel model(field);
   Rng rng(11);
   const Pose2 truth{1.7, 1.4, 0.9};
   const LaserScan scan = scanner.scan(truth, rng);
   std::vector<std::uint32_t> valid;
-  valid_beam_indices(scan, field->params().max_range, valid);
+  valid_beam_indices(scan, field->model().params().max_range, valid);
   model.prepare(scan, valid);
   std::vector<double> log_w;
   for (const Pose2& d : {Pose2{}, Pose2{0.003, 0, 0}, Pose2{0, 0.01, 0}, Pose2{0.03, 0.02, 0},
@@ -161,8 +163,8 @@ TEST(StressLikelihood, WeightsOf1081BeamScoresStayFiniteAcrossThousandsOfNats) {
 }
 
 // Stated bytes per cell: isotropic 1, oriented K, offset 2 (+ its LUT). Where glibc's heap
-// is measurable (not under ASan), the memory the field keeps is its tables plus the oracle
-// bitmask, nothing proportional to the cells beyond that.
+// is measurable (not under ASan), the memory the field keeps is its tables, nothing
+// proportional to the cells beyond that.
 TEST(StressLikelihood, TableMemoryIsTheStatedBytesPerCell) {
   const Room room = make_room(4.0, 3.0, 0.005);
   const std::size_t cells = room.grid.size();
@@ -174,21 +176,20 @@ TEST(StressLikelihood, TableMemoryIsTheStatedBytesPerCell) {
                        Case{TableKind::kOffsetField, 2.0}}) {
     const auto before = heap_in_use();
     const auto field = std::make_unique<const LikelihoodField>(
-        room.grid, maps::BeamLikelihoodParams{}, kind_opts(k.kind));
+        room.grid, sensor_model::BeamLikelihoodParams{}, kind_opts(k.kind));
     const auto after = heap_in_use();
     ASSERT_EQ(field->kind(), k.kind);
     const auto& st = field->stats();
     const double per_cell = static_cast<double>(st.bytes) / static_cast<double>(cells);
     EXPECT_GE(per_cell, k.per_cell);
     EXPECT_LT(per_cell, k.per_cell + 65536.0 / static_cast<double>(cells));
-    EXPECT_LE(st.oracle_bytes, cells / 8 + 8 * static_cast<std::size_t>(room.grid.height()));
     std::cout << "  " << maps::to_string(k.kind) << ": " << st.bytes << " table bytes (" << per_cell
-              << " per cell) + " << st.oracle_bytes << " oracle bytes";
+              << " per cell)";
     if (before && after) {
       const double kept = static_cast<double>(*after) - static_cast<double>(*before);
       std::cout << "; heap kept " << kept << " bytes";
       EXPECT_GE(kept, static_cast<double>(st.bytes));
-      EXPECT_LE(kept, static_cast<double>(st.bytes + st.oracle_bytes) + 256.0 * 1024.0);
+      EXPECT_LE(kept, static_cast<double>(st.bytes) + 256.0 * 1024.0);
     }
     std::cout << "\n";
   }
@@ -217,7 +218,7 @@ TEST(StressLikelihood, HugeMapIsACleanLengthErrorNotAnAllocation) {
     if (k.kind == TableKind::kOrientedBins && kSide < 40000) o.max_table_bytes = 16 * cells - 1;
     const auto before = heap_in_use();
     try {
-      const LikelihoodField f(grid, maps::BeamLikelihoodParams{}, o);
+      const LikelihoodField f(grid, sensor_model::BeamLikelihoodParams{}, o);
       ADD_FAILURE() << maps::to_string(k.kind) << ": built a " << f.stats().bytes
                     << "-byte table above max_table_bytes " << o.max_table_bytes;
     } catch (const std::length_error& e) {
@@ -239,37 +240,28 @@ std::vector<LikelihoodField> all_kinds(const maps::OccupancyGrid& g) {
   for (TableKind k : {TableKind::kIsotropic, TableKind::kOrientedBins, TableKind::kOffsetField}) {
     LikelihoodFieldOptions o = kind_opts(k);
     o.isotropy_tolerance = 0.0;  // keep the oriented kind even where the kernel is isotropic
-    out.emplace_back(g, maps::BeamLikelihoodParams{}, o);
+    out.emplace_back(g, sensor_model::BeamLikelihoodParams{}, o);
     EXPECT_EQ(out.back().kind(), k);
   }
   return out;
 }
 
-std::uint8_t lookup(const LikelihoodField& f, float col, float row, float angle) {
-  switch (f.kind()) {
-    case TableKind::kIsotropic:
-      return f.isotropic().lookup(col, row);
-    case TableKind::kOrientedBins:
-      return f.oriented().lookup(col, row, f.oriented().bin_of(angle));
-    case TableKind::kOffsetField:
-      return f.offset().lookup(col, row, std::cos(angle), std::sin(angle));
-  }
-  return 0;
-}
+using testkit::table_q;
 
 TEST(StressLikelihood, OneByOneMaps) {
   for (const std::int8_t fill : {maps::kOccupied, maps::kFree, maps::kUnknown}) {
     const maps::OccupancyGrid g(1, 1, 0.05, {}, fill);
     for (const LikelihoodField& f : all_kinds(g)) {
       SCOPED_TRACE(std::string(maps::to_string(f.kind())) + " fill " + std::to_string(fill));
+      const testkit::ExactLikelihood exact(g, f.model());
       for (const float a : {0.0f, 1.0f, -2.5f, 3.14159f}) {
-        const std::uint8_t in = lookup(f, 0.5f, 0.5f, a);
+        const std::uint8_t in = table_q(f, 0.5f, 0.5f, a);
         if (fill == maps::kOccupied) {
           EXPECT_EQ(in, 0) << "the cell centre is the obstacle: a perfect hit";
-          EXPECT_NEAR(f.exact_log_likelihood(0.025, 0.025, a), f.stats().ll_max, 1e-9);
+          EXPECT_NEAR(exact(0.025, 0.025, a), f.model().ll_max(), 1e-9);
         } else {
           EXPECT_EQ(in, 255) << "no obstacle: the background floor";
-          EXPECT_NEAR(f.exact_log_likelihood(0.025, 0.025, a), f.stats().ll_background, 1e-9);
+          EXPECT_NEAR(exact(0.025, 0.025, a), f.model().ll_background(), 1e-9);
           EXPECT_EQ(f.stats().sources_stamped, 0u);
           EXPECT_EQ(f.stats().cells_computed, 0u);
         }
@@ -278,10 +270,10 @@ TEST(StressLikelihood, OneByOneMaps) {
                                    {0.5f, -0.01f},
                                    {0.5f, 1.0f},
                                    {-3000.0f, 1e9f}}) {
-          EXPECT_EQ(lookup(f, c, r, a), 255) << "off the map at (" << c << ", " << r << ")";
+          EXPECT_EQ(table_q(f, c, r, a), 255) << "off the map at (" << c << ", " << r << ")";
         }
       }
-      EXPECT_TRUE(std::isfinite(f.stats().nats_per_step) && f.stats().nats_per_step > 0.0);
+      EXPECT_TRUE(std::isfinite(f.model().nats_per_step()) && f.model().nats_per_step() > 0.0);
     }
   }
 }
@@ -296,10 +288,11 @@ TEST(StressLikelihood, AllFreeAndAllOccupiedMaps) {
       for (int r = 0; r < g.height(); ++r)
         for (int c = 0; c < g.width(); ++c)
           for (const float a : {0.3f, 2.0f})
-            wrong += lookup(f, c + 0.5f, r + 0.5f, a) != want ? 1 : 0;
+            wrong += table_q(f, c + 0.5f, r + 0.5f, a) != want ? 1 : 0;
       EXPECT_EQ(wrong, 0);
-      const double want_ll = fill == maps::kOccupied ? f.stats().ll_max : f.stats().ll_background;
-      EXPECT_NEAR(f.exact_log_likelihood(3.025, 2.025, 0.4), want_ll, 1e-9);
+      const double want_ll =
+          fill == maps::kOccupied ? f.model().ll_max() : f.model().ll_background();
+      EXPECT_NEAR(testkit::ExactLikelihood(g, f.model())(3.025, 2.025, 0.4), want_ll, 1e-9);
       if (fill == maps::kFree) {
         EXPECT_EQ(f.stats().cells_computed, 0u);
       }
@@ -311,21 +304,25 @@ TEST(StressLikelihood, AllFreeAndAllOccupiedMaps) {
 }
 
 // Tables live in the map-local frame: a UTM-scale origin (5e5, 5e6) with a yaw changes no
-// byte of any table and no value of the oracle.
+// byte of the table, the model, or what the kernels read.
 TEST(StressLikelihood, UtmOriginChangesNoTableByte) {
   const Room at0 = make_room(6.0, 4.0, 0.05);
   const Room utm = make_room(6.0, 4.0, 0.05, Pose2{5e5, 5e6, 0.7});
-  const LikelihoodField a(at0.grid, maps::BeamLikelihoodParams{});
-  const LikelihoodField b(utm.grid, maps::BeamLikelihoodParams{});
+  const LikelihoodField a(at0.grid, sensor_model::BeamLikelihoodParams{});
+  const LikelihoodField b(utm.grid, sensor_model::BeamLikelihoodParams{});
   ASSERT_EQ(a.width(), b.width());
   ASSERT_EQ(a.height(), b.height());
   EXPECT_EQ(std::memcmp(a.isotropic().q, b.isotropic().q,
                         static_cast<std::size_t>(a.width()) * static_cast<std::size_t>(a.height())),
             0);
+  EXPECT_EQ(a.model().ll_max(), b.model().ll_max());
+  EXPECT_EQ(a.model().nats_per_step(), b.model().nats_per_step());
   Rng rng(5);
   for (int i = 0; i < 200; ++i) {
-    const double x = rng.uniform(0.0, 6.4), y = rng.uniform(0.0, 4.4), t = rng.uniform(-4, 4);
-    EXPECT_EQ(a.exact_log_likelihood(x, y, t), b.exact_log_likelihood(x, y, t));
+    const auto col = static_cast<float>(rng.uniform(-2.0, 130.0));
+    const auto row = static_cast<float>(rng.uniform(-2.0, 90.0));
+    const double t = rng.uniform(-4, 4);
+    EXPECT_EQ(table_q(a, col, row, t), table_q(b, col, row, t));
   }
   EXPECT_EQ(b.origin().x, 5e5);
   EXPECT_EQ(b.origin().y, 5e6);
@@ -340,7 +337,7 @@ TEST(StressLikelihood, AbsurdSigmasAreAClearErrorNotAOneCellReach) {
   for (const auto& [along, mismatch, reach] :
        {std::tuple{1e8, 0.0, 4.0}, std::tuple{1e300, 0.0, 4.0}, std::tuple{0.01, 1e300, 4.0},
         std::tuple{0.01, 0.0, 1e300}, std::tuple{1e200, 0.0, 1e200}}) {
-    maps::BeamLikelihoodParams p;
+    sensor_model::BeamLikelihoodParams p;
     p.sigma_along = along;
     p.model_mismatch = mismatch;
     LikelihoodFieldOptions o;

@@ -45,7 +45,7 @@ struct FiveMillimetreRun {
 
   LocalizerConfig config(bool plain_product) const {
     LocalizerConfig cfg;
-    cfg.likelihood.beam = maps::BeamLikelihoodParams{};  // paper sigmas, no model mismatch
+    cfg.likelihood.beam = sensor_model::BeamLikelihoodParams{};  // paper sigmas, no model mismatch
     cfg.likelihood.selection.mode = BeamSelectionMode::kAll;
     cfg.likelihood.expected_beams = 1081;
     if (plain_product) {

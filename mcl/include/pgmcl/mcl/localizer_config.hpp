@@ -27,7 +27,7 @@ struct MotionConfig {
 struct LikelihoodConfig {
   /// Dekan et al.'s sensor sigmas; model_mismatch (metres) widens the kernel for map error,
   /// which on a 5 cm map is larger than the sensor's.
-  maps::BeamLikelihoodParams beam{.model_mismatch = 0.05};
+  sensor_model::BeamLikelihoodParams beam{.model_mismatch = 0.05};
   maps::LikelihoodFieldOptions table{};
   double effective_beams = 20.0;  ///< independent readings a scan is worth; <= 0: `tempering`
   double tempering = 1.0;         ///< fixed exponent in (0, 1], used when effective_beams <= 0

@@ -8,7 +8,7 @@
 /// here), in cells, as float SoA. Per particle, the hot loop only rotates and translates
 /// those endpoints by the particle pose, reads one byte q per beam and sums q in uint32:
 /// exact and order-independent, so any thread count gives bitwise the same sums.
-/// The table kind is dispatched ONCE per call into a loop specialised per view type:
+/// The table kind is dispatched ONCE per call into the kernel of maps/table_kernels.hpp:
 /// no per-beam branch on configuration, no virtual call, no allocation.
 
 #include <cstddef>
@@ -19,6 +19,7 @@
 
 #include "pgmcl/common/laser_scan.hpp"
 #include "pgmcl/maps/likelihood_field.hpp"
+#include "pgmcl/maps/table_kernels.hpp"
 
 namespace pgmcl {
 
@@ -32,6 +33,10 @@ struct PreparedBeams {
   float reach = 0.0f;      ///< max over beams of |ex| + |ey|, cells (bounds any rotation)
 
   [[nodiscard]] std::size_t size() const noexcept { return ex.size(); }
+  /// The arrays as the table kernels read them (maps/table_kernels.hpp).
+  [[nodiscard]] maps::BeamArrays arrays() const noexcept {
+    return {ex.data(), ey.data(), ux.data(), uy.data(), bin.data(), ex.size(), reach};
+  }
 };
 
 /// Result of scoring one pose.
@@ -75,15 +80,14 @@ class MeasurementModel {
   /// Per-beam log-likelihood summed over the prepared beams for a given sum_q:
   ///   ll = beams * ll_max - nats_per_step * sum_q   (Dekan et al., Eq. (6), quantised).
   [[nodiscard]] double log_likelihood(std::uint32_t sum_q) const noexcept {
-    const auto& s = field_->stats();
-    return static_cast<double>(beams_.size()) * s.ll_max -
-           s.nats_per_step * static_cast<double>(sum_q);
+    const sensor_model::BeamLikelihood& m = field_->model();
+    return static_cast<double>(beams_.size()) * m.ll_max() -
+           m.nats_per_step() * static_cast<double>(sum_q);
   }
 
  private:
   std::shared_ptr<const maps::LikelihoodField> field_;
   PreparedBeams beams_;
-  float inv_res_ = 1.0f;
   std::uint8_t fit_q_ = 0;
 };
 

@@ -42,7 +42,7 @@ bool same(const std::vector<float>& a, const std::vector<float>& b) {
 
 bool same(const CarmenScan& a, const CarmenScan& b) {
   const LaserScan &s = a.scan, &t = b.scan;
-  return a.message == b.message && same(s.stamp, t.stamp) && same(s.angle_min, t.angle_min) &&
+  return a.message == b.message && same(a.stamp, b.stamp) && same(s.angle_min, t.angle_min) &&
          same(s.angle_increment, t.angle_increment) && same(s.range_min, t.range_min) &&
          same(s.range_max, t.range_max) && same(s.ranges, t.ranges) &&
          same(s.sensor_pose, t.sensor_pose) && a.config.laser_type == b.config.laser_type &&

@@ -22,5 +22,6 @@ Command add_perturb_map_command(CLI::App& app);
 Command add_eval_command(CLI::App& app);
 Command add_kernel_command(CLI::App& app);
 Command add_calibrate_command(CLI::App& app);
+Command add_config_command(CLI::App& app);
 
 }  // namespace pgmcl::app

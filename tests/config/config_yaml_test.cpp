@@ -120,7 +120,7 @@ TEST(CliConfig, ErrorsNameFileLineAndKey) {
   // validate() failures are reported at the key's line.
   expect_error("gating:\n  d_min: 0.1\nfilter:\n  resample_threshold: 1.5\n", 4,
                "filter.resample_threshold", "must be in [0, 1]");
-  expect_error("motion:\n  noise:\n    a3: -0.1\n", 3, "motion.noise.a3", ">= 0");
+  expect_error("motion:\n  noise:\n    a3: -0.1\n", 3, "motion.noise.a3", "must be in [0, 100]");
 }
 
 TEST(CliConfig, SetOverridesUseDottedKeys) {

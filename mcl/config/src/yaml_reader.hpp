@@ -59,8 +59,11 @@ class YamlMap {
   /// Elements of a sequence (absent -> empty); each element's field is key[i].
   [[nodiscard]] std::vector<std::pair<YAML::Node, std::string>> sequence(const char* key);
 
-  /// Throws for the first key that was not read.
+  /// Throws for the first key that was not read, suggesting the nearest key that was asked
+  /// for ("unknown key (did you mean 'particles'?)").
   void finish() const;
+  /// The key asked for (read or looked up) that is nearest `key` in edit distance, or "".
+  [[nodiscard]] std::string closest_key(const std::string& key) const;
 
   [[noreturn]] void fail(const char* key, const std::string& problem) const;
   [[noreturn]] void fail_at(const YAML::Node& node, const std::string& field,

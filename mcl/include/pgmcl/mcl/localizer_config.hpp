@@ -1,11 +1,14 @@
 #pragma once
 /// Configuration of pgmcl::Localizer: plain structs, documented defaults and units.
 /// LocalizerConfig::validate() is the always-on check at the API boundary; it throws
-/// std::invalid_argument naming the offending field ("filter.kld.epsilon must be ...").
+/// InvalidConfigField naming the offending field ("filter.kld.epsilon must be ..."). Every
+/// field's unit and allowed values are described once, in config_schema.hpp.
 
 #include <cstddef>
 #include <cstdint>
 #include <numbers>
+#include <stdexcept>
+#include <string>
 
 #include "pgmcl/common/motion_model.hpp"
 #include "pgmcl/maps/likelihood_field.hpp"
@@ -146,6 +149,19 @@ enum class TimeBackwardsPolicy : std::uint8_t {
            ///< update starts a fresh odometry chain (e.g. a replayed log looping around)
 };
 
+/// What LocalizerConfig::validate() throws: the dotted path of the first invalid field
+/// ("filter.kld.epsilon") and what is wrong with it; what() says "LocalizerConfig: " + both.
+class InvalidConfigField : public std::invalid_argument {
+ public:
+  InvalidConfigField(std::string field, std::string problem);
+  [[nodiscard]] const std::string& field() const noexcept { return field_; }
+  [[nodiscard]] const std::string& problem() const noexcept { return problem_; }
+
+ private:
+  std::string field_;
+  std::string problem_;
+};
+
 struct LocalizerConfig {
   MotionConfig motion{};
   LikelihoodConfig likelihood{};
@@ -157,7 +173,7 @@ struct LocalizerConfig {
   int threads = 1;          ///< OpenMP threads for motion + measurement; 0 = OpenMP default
   std::uint64_t seed = 42;  ///< every random stream derives from this (random.hpp)
 
-  /// Throws std::invalid_argument naming the first invalid field.
+  /// Throws InvalidConfigField (a std::invalid_argument) for the first invalid field.
   void validate() const;
 };
 

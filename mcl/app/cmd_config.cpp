@@ -1,0 +1,49 @@
+/// pgmcl config: the filter configuration after --config and --set, as the YAML every run
+/// writes next to its results, or (--reference) every key with its default, unit and
+/// allowed values as Markdown (configs/reference.md).
+
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "pgmcl/config/config_yaml.hpp"
+
+namespace pgmcl::app {
+namespace {
+
+struct ConfigOptions {
+  std::string config;
+  std::vector<std::string> sets;
+  bool reference = false;
+};
+
+int run_config(const ConfigOptions& o) {
+  if (o.reference) {
+    std::cout << io::localizer_config_reference();
+    return 0;
+  }
+  LocalizerConfig cfg;
+  if (!o.config.empty()) io::read_localizer_config(o.config, cfg);
+  io::apply_localizer_overrides(o.sets, cfg);
+  std::cout << io::localizer_config_yaml(cfg);
+  return 0;
+}
+
+}  // namespace
+
+Command add_config_command(CLI::App& app) {
+  auto o = std::make_shared<ConfigOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "config", "Print the filter configuration after --config and --set, or the key reference");
+  sub->add_option("--config", o->config, "Filter configuration YAML")->check(CLI::ExistingFile);
+  sub->add_option("--set", o->sets, "Override a config key, e.g. filter.particles=2000")
+      ->take_all();
+  auto* ref = sub->add_flag("--reference", o->reference,
+                            "Print every key with its default, unit and allowed values (Markdown)");
+  ref->excludes(sub->get_option("--config"))->excludes(sub->get_option("--set"));
+  return {sub, [o] { return run_config(*o); }};
+}
+
+}  // namespace pgmcl::app

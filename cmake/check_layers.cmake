@@ -13,6 +13,7 @@ set(allowed_sims "pgmcl::maps;pgmcl::common;pgmcl::sensor_model;OpenMP::OpenMP_C
 set(allowed_mcl "pgmcl::maps;pgmcl::sensor_model;pgmcl::common;OpenMP::OpenMP_CXX")
 set(allowed_io "pgmcl::common;pgmcl::sims;ZLIB::ZLIB")
 set(allowed_eval "pgmcl::io")
+set(allowed_replay "pgmcl::mcl;pgmcl::eval;pgmcl::io")
 set(allowed_config "pgmcl::mcl;pgmcl::sims;pgmcl::map_io;pgmcl::io;yaml-cpp")
 set(failed FALSE)
 foreach(c IN LISTS components)

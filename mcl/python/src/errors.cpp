@@ -43,15 +43,13 @@ void translate(std::exception_ptr p) {
   } catch (const io::FormatError& e) {  // also ConfigError, ScenarioError
     raise_input_error(e.what(), py::str(e.file()), e.line(), e.field(), e.message());
   } catch (const maps::MapError& e) {
-    if (e.field().empty()) {  // opening, reading or writing the file itself
-      if (!std::filesystem::exists(e.file())) {
-        raise_not_found(e.what(), e.file());
-      } else {
-        PyErr_SetString(PyExc_OSError, e.what());
-      }
+    if (!e.file().empty() && !std::filesystem::exists(e.file())) {  // the YAML or its image
+      raise_not_found(e.what(), e.file());
+    } else if (e.field().empty()) {  // reading or writing the file itself
+      PyErr_SetString(PyExc_OSError, e.what());
     } else {
-      raise_input_error(e.what(), py::str(e.file()), static_cast<std::size_t>(e.line()), e.field(),
-                        e.problem());
+      raise_input_error(e.what(), py::str(e.file()), static_cast<std::size_t>(e.line()),
+                        e.field(), e.problem());
     }
   } catch (const InvalidConfigField& e) {
     raise_input_error(e.what(), py::none(), 0, e.field(), e.problem());

@@ -68,6 +68,9 @@ struct LogData {
   std::vector<double> sensor_pose;  ///< per scan: x, y, theta
   std::vector<double> odometry;     ///< per scan: paired odometry (NaN without)
   std::vector<std::uint8_t> has_odometry;  ///< per scan: 1 when paired (numpy bool)
+  /// per scan: 1 when pgmcl::replay feeds it to the filter (paired, not stamped before the
+  /// last scan fed)
+  std::vector<std::uint8_t> usable;
   std::vector<double> poses;  ///< per scan: robot pose from the logged laser pose (NaN without)
 
   LogData(io::CarmenLog l, std::string src);

@@ -48,8 +48,8 @@ void translate(std::exception_ptr p) {
     } else if (e.field().empty()) {  // reading or writing the file itself
       PyErr_SetString(PyExc_OSError, e.what());
     } else {
-      raise_input_error(e.what(), py::str(e.file()), static_cast<std::size_t>(e.line()),
-                        e.field(), e.problem());
+      raise_input_error(e.what(), py::str(e.file()), static_cast<std::size_t>(e.line()), e.field(),
+                        e.problem());
     }
   } catch (const InvalidConfigField& e) {
     raise_input_error(e.what(), py::none(), 0, e.field(), e.problem());

@@ -20,7 +20,8 @@ else a list of 1-D arrays, ``angle_min``, ``angle_increment``, ``range_min``, ``
 at the scan as the filter gets it (interpolated between ODOM messages, else the scan's own
 odometry fields; NaN rows where there is none, see ``has_odometry``) and ``poses`` (N, 3)
 the robot pose of the logged laser pose (the ground truth of a corrected log; NaN for
-RAWLASER scans). ``scan(i)`` gives the keyword arguments of Localizer.update for scan i.)doc";
+RAWLASER scans). ``usable`` marks the scans pgmcl.localize feeds to the filter;
+``scan(i)`` gives the keyword arguments of Localizer.update for scan i.)doc";
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
@@ -56,6 +57,14 @@ py::array_t<double> column(const std::vector<double>& rows, std::size_t width, s
 py::array_t<double> poses_view(const std::vector<double>& rows, py::handle owner) {
   const auto n = static_cast<py::ssize_t>(rows.size() / 3);
   return view<double>(rows.data(), {n, 3}, {3 * sizeof(double), sizeof(double)}, owner);
+}
+
+/// An (N,) read-only numpy bool view of per-scan flags.
+py::array flags_view(const std::vector<std::uint8_t>& flags, py::handle owner) {
+  py::array a(py::dtype("bool"), {static_cast<py::ssize_t>(flags.size())}, {py::ssize_t{1}},
+              flags.data(), owner);
+  py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return a;
 }
 
 py::object ranges(py::object self) {
@@ -110,6 +119,8 @@ LogData::LogData(io::CarmenLog l, std::string src) : log(std::move(l)), source(s
   odometry.reserve(3 * n);
   poses.reserve(3 * n);
   has_odometry.reserve(n);
+  usable.reserve(n);
+  double last_fed = -std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < n; ++i) {
     const io::CarmenScan& s = log.scans[i];
     stamps.push_back(s.stamp);
@@ -119,6 +130,9 @@ LogData::LogData(io::CarmenLog l, std::string src) : log(std::move(l)), source(s
     push(sensor_pose, s.scan.sensor_pose);
     const bool paired_ok = paired.scans[i].source != io::OdomSource::kNone;
     has_odometry.push_back(paired_ok ? 1 : 0);
+    const bool fed = paired_ok && s.stamp >= last_fed;  // replay.cpp's rule
+    usable.push_back(fed ? 1 : 0);
+    if (fed) last_fed = s.stamp;
     push(odometry, paired_ok ? paired.scans[i].odom : Pose2{kNaN, kNaN, kNaN});
     push(poses, s.has_poses ? s.laser_pose.compose(s.scan.sensor_pose.inverse())
                             : Pose2{kNaN, kNaN, kNaN});
@@ -220,13 +234,14 @@ void bind_logs(py::module_& m) {
       .def_property_readonly(
           "has_odometry",
           [](py::object self) {
-            const auto& d = self.cast<const LogData&>();
-            py::array a(py::dtype("bool"), {static_cast<py::ssize_t>(d.has_odometry.size())},
-                        {py::ssize_t{1}}, d.has_odometry.data(), self);
-            py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
-            return a;
+            return flags_view(self.cast<const LogData&>().has_odometry, self);
           },
-          "(N,) bool: the scan has an odometry pose (pgmcl.localize skips the others).")
+          "(N,) bool: the scan has an odometry pose.")
+      .def_property_readonly(
+          "usable",
+          [](py::object self) { return flags_view(self.cast<const LogData&>().usable, self); },
+          "(N,) bool: the scans pgmcl.localize feeds to the filter, in order: with odometry "
+          "and not stamped before the last one fed (the others it skips and reports).")
       .def_property_readonly(
           "poses",
           [](py::object self) { return poses_view(self.cast<const LogData&>().poses, self); },

@@ -2,6 +2,10 @@
 with an ATE bound and the CLI's metrics.yaml, simulate, evaluate from arrays and files;
 numpy results that view the run's memory."""
 
+import os
+import signal
+import threading
+
 import numpy as np
 import pytest
 
@@ -40,10 +44,12 @@ def test_read_carmen_gives_the_scans_as_arrays(intel):
 
 def test_log_arrays_are_views(intel):
     log = pgmcl.read_carmen(intel / "raw.log.gz")
-    for name in ("ranges", "stamps", "odometry", "range_max", "has_odometry"):
+    for name in ("ranges", "stamps", "odometry", "range_max", "has_odometry", "usable"):
         a, b = getattr(log, name), getattr(log, name)
         assert np.shares_memory(a, b), name
         assert not a.flags.owndata and not a.flags.writeable, name
+    # 4 scans of the raw log are stamped before their predecessor: localize skips them.
+    assert log.usable.sum() == len(log) - 4 and np.all(np.diff(log.stamps[log.usable]) >= 0)
     scan = log.scan(3)
     assert np.array_equal(scan["ranges"], log.ranges[3])
     assert scan["odom"] == tuple(log.odometry[3]) and scan["stamp"] == log.stamps[3]
@@ -152,3 +158,17 @@ def test_simulate_and_localize_a_scenario():
     assert not np.array_equal(other.log.ranges, sim.log.ranges)
     run = pgmcl.localize(sim.map, sim.log, truth=sim.truth, seed=1)
     assert run.metrics["ate_rmse_m"] < 0.05 and run.complete
+
+
+def test_ctrl_c_stops_a_run_with_keyboard_interrupt(intel):
+    # 20000 particles without KLD: about 10 ms per update, some 10 s for the log; the run
+    # looks for signals every 64 updates.
+    heavy = {"filter.particles": 20000, "filter.kld.enabled": False}
+    timer = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            pgmcl.localize(intel / "map.yaml", intel / "raw.log.gz", truth=intel / "truth.tum",
+                           config=heavy)
+    finally:
+        timer.cancel()

@@ -13,11 +13,8 @@ SIGMA = (0.25, 0.25, 0.1)  # pgmcl localize --init X,Y,THETA's default spread (m
 
 def step_through(loc, log):
     """Feeds every scan with odometry in time order, as pgmcl::replay does."""
-    rows, results, last = [], [], -np.inf
-    for i in range(len(log)):
-        if not log.has_odometry[i] or log.stamps[i] < last:
-            continue  # replay skips (and reports) these too
-        last = log.stamps[i]
+    rows, results = [], []
+    for i in np.flatnonzero(log.usable):
         r = loc.update(**log.scan(i))
         rows.append((log.stamps[i],) + r.estimate)
         results.append(r)

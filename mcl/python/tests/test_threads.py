@@ -10,7 +10,7 @@ import pytest
 
 import pgmcl
 
-UPDATES = 12  # per thread
+UPDATES = 8  # per thread
 # Heavy updates (a global start with 50000 particles: 30..150 ms each) so that a thread
 # woken when the other releases the GIL surely runs while that one is still inside.
 HEAVY = {"filter.global_particles": 50000, "filter.particles": 50000,

@@ -54,6 +54,10 @@ struct MissingFile {
 /// path of a filter YAML file, or None (the defaults).
 [[nodiscard]] LocalizerConfig config_arg(py::handle obj);
 [[nodiscard]] py::object config_object(const LocalizerConfig& cfg);
+/// One override, read and validated as `--set key=value` (InputError with its message).
+void apply_override(LocalizerConfig& cfg, const std::string& key, py::handle value);
+/// A random seed: a whole number in [0, 2^64).
+[[nodiscard]] std::uint64_t seed_arg(py::handle obj);
 
 /// A whole CARMEN log and the per-scan arrays Python sees, laid out once so that every
 /// access returns a view, never a copy.

@@ -18,8 +18,8 @@ namespace schema = pgmcl::config_schema;
 
 constexpr const char* kConfigDoc = R"doc(The filter configuration (pgmcl::LocalizerConfig).
 
-Config(overrides=None, /, **kwargs) starts from the documented defaults and applies the
-overrides in order: dotted keys as on the command line's ``--set``
+Config(overrides=None, /, **kwargs) starts from the documented defaults (or a copy of
+``overrides`` when it is a Config) and applies the overrides in order: dotted keys as on the command line's ``--set``
 (``Config({"filter.kld.max_particles": 5000})`` or ``Config(**{"filter.particles": 500})``)
 or nested dicts (``Config(filter={"particles": 500}, seed=7)``). Values are numbers, bools
 or str (enumerations by name, e.g. ``{"likelihood.table.kind": "oriented"}``); each is read
@@ -108,9 +108,7 @@ void apply_overrides(LocalizerConfig& cfg, py::handle overrides) {
   }
   std::vector<std::pair<std::string, py::object>> items;
   flatten(overrides, "", items);
-  for (const auto& [key, value] : items) {
-    io::apply_localizer_override(key, value_text(key, value), cfg);
-  }
+  for (const auto& [key, value] : items) apply_override(cfg, key, value);
 }
 
 py::object lookup(const LocalizerConfig& c, const std::string& key) {
@@ -144,6 +142,10 @@ LocalizerConfig load(py::handle path, py::handle overrides) {
 
 }  // namespace
 
+void apply_override(LocalizerConfig& cfg, const std::string& key, py::handle value) {
+  io::apply_localizer_override(key, value_text(key, value), cfg);
+}
+
 LocalizerConfig config_arg(py::handle obj) {
   if (obj.is_none()) return {};
   if (py::isinstance<LocalizerConfig>(obj)) return obj.cast<LocalizerConfig>();
@@ -167,7 +169,11 @@ void bind_config(py::module_& m) {
   py::class_<LocalizerConfig>(m, "Config", kConfigDoc)
       .def(py::init([](py::handle overrides, const py::kwargs& kw) {
              LocalizerConfig cfg;
-             apply_overrides(cfg, overrides);
+             if (py::isinstance<LocalizerConfig>(overrides)) {  // a copy, then kwargs
+               cfg = overrides.cast<LocalizerConfig>();
+             } else {
+               apply_overrides(cfg, overrides);
+             }
              apply_overrides(cfg, kw);
              return cfg;
            }),
@@ -212,7 +218,7 @@ void bind_config(py::module_& m) {
       .def(
           "__setitem__",
           [](LocalizerConfig& c, const std::string& key, py::handle value) {
-            io::apply_localizer_override(key, value_text(key, value), c);
+            apply_override(c, key, value);
           },
           py::arg("key"), py::arg("value"), "Sets one dotted key, validated like --set.")
       .def(

@@ -96,6 +96,18 @@ Pose2 pose_arg(py::handle obj, const char* name) {
   }
 }
 
+std::uint64_t seed_arg(py::handle obj) {
+  const py::module_ numbers = py::module_::import("numbers");
+  if (!py::isinstance(obj, numbers.attr("Integral"))) {
+    throw py::type_error("seed: expected a whole number, got " + py::repr(obj).cast<std::string>());
+  }
+  const auto v = py::reinterpret_borrow<py::object>(obj);
+  if (v < py::int_(0) || v >= py::int_(1).attr("__lshift__")(64)) {
+    throw py::value_error("seed: must be in [0, 2^64), got " + py::repr(obj).cast<std::string>());
+  }
+  return py::int_(v).cast<std::uint64_t>();
+}
+
 py::tuple pose_tuple(const Pose2& p) {
   return py::make_tuple(p.x, p.y, p.theta);
 }

@@ -150,8 +150,10 @@ void bind_result(py::module_& m) {
           "or 'time_went_backwards'.")
       .def_property_readonly("measured", &UpdateResult::measured,
                              "The weights were updated from this scan.")
-      .def_readonly("motion_applied", &UpdateResult::motion_applied)
-      .def_readonly("resampled", &UpdateResult::resampled)
+      .def_readonly("motion_applied", &UpdateResult::motion_applied,
+                    "The odometry increment moved the particles (False when gated).")
+      .def_readonly("resampled", &UpdateResult::resampled,
+                    "The set was resampled (N_eff below the threshold, or injection due).")
       .def_readonly("n_eff", &UpdateResult::n_eff,
                     "Effective sample size 1 / sum w² after the measurement, before resampling.")
       .def_readonly("tempering", &UpdateResult::tempering,
@@ -160,14 +162,17 @@ void bind_result(py::module_& m) {
                     "Particle count after this update (KLD-sampling may change it).")
       .def_readonly("injected", &UpdateResult::injected,
                     "Particles redrawn over free space (augmented MCL).")
-      .def_readonly("w_slow", &UpdateResult::w_slow)
-      .def_readonly("w_fast", &UpdateResult::w_fast)
+      .def_readonly("w_slow", &UpdateResult::w_slow,
+                    "Augmented MCL's long-term average of the per-beam likelihood.")
+      .def_readonly("w_fast", &UpdateResult::w_fast, "Augmented MCL's short-term average.")
       .def_readonly("beams_total", &UpdateResult::beams_total, "Readings in the scan.")
       .def_readonly("beams_invalid", &UpdateResult::beams_invalid,
                     "NaN, inf or out-of-range readings (skipped).")
       .def_readonly("beams_used", &UpdateResult::beams_used,
                     "Readings scored per particle after selection.")
-      .def_readonly("beams_background", &UpdateResult::beams_background)
+      .def_readonly("beams_background", &UpdateResult::beams_background,
+                    "Used beams whose endpoint, seen from the estimate, reads the table's "
+                    "background (beyond the kernel's reach or off the map).")
       .def_readonly("fit", &UpdateResult::fit,
                     "Confidence: fraction of used beams within 3 sigma of a mapped obstacle, "
                     "seen from the estimate (near 1 on a well-mapped scene).")
@@ -176,9 +181,12 @@ void bind_result(py::module_& m) {
       .def_readonly("alternative_evidence", &UpdateResult::alternative_evidence,
                     "Largest evidence of a competitor (tempered nats; > 0: another place fits "
                     "better so far, and converged is False).")
-      .def_readonly("seeded", &UpdateResult::seeded)
-      .def_readonly("switched", &UpdateResult::switched)
-      .def_readonly("searched", &UpdateResult::searched)
+      .def_readonly("seeded", &UpdateResult::seeded,
+                    "Particles redrawn around searched hypotheses this update.")
+      .def_readonly("switched", &UpdateResult::switched,
+                    "The filter moved to a competitor that outweighed it.")
+      .def_readonly("searched", &UpdateResult::searched,
+                    "A scan-to-map search ran this update (global or rescue).")
       .def_property_readonly(
           "timings",
           [](const UpdateResult& r) {

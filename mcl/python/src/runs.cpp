@@ -84,9 +84,8 @@ std::shared_ptr<RunData> localize(py::handle map, py::handle log, py::handle ini
   const auto grid = map_arg(map);
   const auto data = log_arg(log);
   job.config = config_arg(config);
-  if (!seed.is_none()) job.config.seed = seed.cast<std::uint64_t>();
-  if (!threads.is_none()) job.config.threads = threads.cast<int>();
-  job.config.validate();
+  if (!seed.is_none()) apply_override(job.config, "seed", seed);  // as --set seed=...
+  if (!threads.is_none()) apply_override(job.config, "threads", threads);
   if (!truth.is_none()) job.truth = trajectory_arg(truth, "truth");
   if (!relations.is_none()) {
     job.relations = io::read_relations(existing_file(relations));
@@ -169,7 +168,7 @@ std::shared_ptr<SimulationData> simulate(py::handle scenario, py::handle seed,
   const std::string path = existing_file(scenario);
   auto map = std::make_shared<maps::OccupancyGrid>();
   io::ScenarioFile sf = io::read_scenario_file(path, *map);
-  if (!seed.is_none()) sf.scenario.seed = seed.cast<std::uint64_t>();
+  if (!seed.is_none()) sf.scenario.seed = seed_arg(seed);
   if (!duration.is_none()) {
     const auto d = duration.cast<double>();
     if (!std::isfinite(d) || d <= 0.0) {
@@ -307,8 +306,9 @@ void bind_runs(py::module_& m) {
           },
           "(N, 4) (t, x, y, theta): the true robot poses at the scans.")
       .def_readonly("map", &SimulationData::map, "The scenario's map (a Map).")
-      .def_readonly("name", &SimulationData::name)
-      .def_readonly("description", &SimulationData::description)
+      .def_readonly("name", &SimulationData::name, "The scenario's name (default its file's stem).")
+      .def_readonly("description", &SimulationData::description,
+                    "The scenario's description (may be empty).")
       .def_readonly("kidnap_times", &SimulationData::kidnap_times, "Seconds.");
 
   m.def("localize", &localize, py::arg("map"), py::arg("log"), py::arg("init") = py::none(),

@@ -90,6 +90,8 @@ struct LogData {
 [[nodiscard]] io::Trajectory trajectory_arg(py::handle obj, const char* name);
 /// An (N, 4) array of (t, x, y, theta), copied.
 [[nodiscard]] py::array_t<double> trajectory_array(const io::Trajectory& t);
+/// The same as a read-only view of `t`, kept alive by `owner`.
+[[nodiscard]] py::array_t<double> trajectory_view(const io::Trajectory& t, py::handle owner);
 
 /// metrics.yaml as a dict: the same keys (io::metrics_entries), counts as int, `null` as
 /// None; `run_figures` as in io::metrics_yaml.

@@ -165,6 +165,12 @@ py::array_t<double> trajectory_array(const io::Trajectory& t) {
   return py::array_t<double>({n, py::ssize_t{4}}, reinterpret_cast<const double*>(t.data()));
 }
 
+py::array_t<double> trajectory_view(const io::Trajectory& t, py::handle owner) {
+  return view<double>(reinterpret_cast<const double*>(t.data()),
+                      {static_cast<py::ssize_t>(t.size()), 4}, {4 * sizeof(double), sizeof(double)},
+                      owner);
+}
+
 io::Trajectory trajectory_arg(py::handle obj, const char* name) {
   if (py::isinstance<py::str>(obj) || py::hasattr(obj, "__fspath__")) {
     const std::string path = existing_file(obj);
@@ -186,8 +192,8 @@ io::Trajectory trajectory_arg(py::handle obj, const char* name) {
 }
 
 void bind_logs(py::module_& m) {
-  py::class_<LogData, std::shared_ptr<LogData>>(m, "Log", kLogDoc)
-      .def("__len__", [](const LogData& d) { return d.log.scans.size(); })
+  py::class_<LogData, std::shared_ptr<LogData>> log(m, "Log", kLogDoc);
+  log.def("__len__", [](const LogData& d) { return d.log.scans.size(); })
       .def_property_readonly(
           "stamps",
           [](py::object self) {
@@ -200,38 +206,6 @@ void bind_logs(py::module_& m) {
                              "(N, beams) float32 view when the beam count is fixed, else a list "
                              "of N 1-D views; metres.")
       .def_property_readonly(
-          "angle_min",
-          [](py::object self) {
-            return column(self.cast<const LogData&>().scan_geometry, 4, 0, self);
-          },
-          "(N,) first beam's angle in the sensor frame, radians.")
-      .def_property_readonly(
-          "angle_increment",
-          [](py::object self) {
-            return column(self.cast<const LogData&>().scan_geometry, 4, 1, self);
-          },
-          "(N,) angle between beams, radians.")
-      .def_property_readonly(
-          "range_min",
-          [](py::object self) {
-            return column(self.cast<const LogData&>().scan_geometry, 4, 2, self);
-          },
-          "(N,) shortest valid reading, metres.")
-      .def_property_readonly(
-          "range_max",
-          [](py::object self) {
-            return column(self.cast<const LogData&>().scan_geometry, 4, 3, self);
-          },
-          "(N,) 'no return' reading, metres.")
-      .def_property_readonly(
-          "sensor_pose",
-          [](py::object self) { return poses_view(self.cast<const LogData&>().sensor_pose, self); },
-          "(N, 3) the laser's pose on the robot.")
-      .def_property_readonly(
-          "odometry",
-          [](py::object self) { return poses_view(self.cast<const LogData&>().odometry, self); },
-          "(N, 3) odometry pose at each scan as Localizer.update takes it (NaN without).")
-      .def_property_readonly(
           "has_odometry",
           [](py::object self) {
             return flags_view(self.cast<const LogData&>().has_odometry, self);
@@ -242,10 +216,6 @@ void bind_logs(py::module_& m) {
           [](py::object self) { return flags_view(self.cast<const LogData&>().usable, self); },
           "(N,) bool: the scans pgmcl.localize feeds to the filter, in order: with odometry "
           "and not stamped before the last one fed (the others it skips and reports).")
-      .def_property_readonly(
-          "poses",
-          [](py::object self) { return poses_view(self.cast<const LogData&>().poses, self); },
-          "(N, 3) robot pose of the logged laser pose (ground truth of a corrected log).")
       .def("scan", &scan_kwargs, py::arg("i"),
            "The keyword arguments of Localizer.update for scan i: loc.update(**log.scan(i)).")
       .def(
@@ -273,6 +243,44 @@ void bind_logs(py::module_& m) {
                (d.beams > 0 ? " of " + std::to_string(d.beams) + " beams" : std::string()) + ", " +
                std::to_string(with_odom) + " with odometry)";
       });
+
+  // Per-scan scalars: columns of scan_geometry; per-scan poses: rows of three.
+  struct Column {
+    const char* name;
+    std::size_t index;
+    const char* doc;
+  };
+  for (const Column& c :
+       {Column{"angle_min", 0, "(N,) first beam's angle in the sensor frame, radians."},
+        Column{"angle_increment", 1, "(N,) angle between beams, radians."},
+        Column{"range_min", 2, "(N,) shortest valid reading, metres."},
+        Column{"range_max", 3, "(N,) 'no return' reading, metres."}}) {
+    log.def_property_readonly(
+        c.name,
+        [index = c.index](py::object self) {
+          return column(self.cast<const LogData&>().scan_geometry, 4, index, self);
+        },
+        c.doc);
+  }
+  struct Poses {
+    const char* name;
+    std::vector<double> LogData::*rows;
+    const char* doc;
+  };
+  for (const Poses& p :
+       {Poses{"sensor_pose", &LogData::sensor_pose, "(N, 3) the laser's pose on the robot."},
+        Poses{"odometry", &LogData::odometry,
+              "(N, 3) odometry pose at each scan as Localizer.update takes it (NaN without)."},
+        Poses{"poses", &LogData::poses,
+              "(N, 3) robot pose of the logged laser pose (ground truth of a corrected log; "
+              "NaN for scans that log none)."}}) {
+    log.def_property_readonly(
+        p.name,
+        [rows = p.rows](py::object self) {
+          return poses_view(self.cast<const LogData&>().*rows, self);
+        },
+        p.doc);
+  }
 
   m.def(
       "read_carmen",

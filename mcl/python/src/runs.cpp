@@ -229,10 +229,7 @@ void bind_runs(py::module_& m) {
       .def_property_readonly(
           "trajectory",
           [](py::object self) {
-            const auto& t = self.cast<const RunData&>().result.trajectory;
-            return view<double>(reinterpret_cast<const double*>(t.data()),
-                                {static_cast<py::ssize_t>(t.size()), 4},
-                                {4 * sizeof(double), sizeof(double)}, self);
+            return trajectory_view(self.cast<const RunData&>().result.trajectory, self);
           },
           "(N, 4) (t, x, y, theta): one estimate per scan with odometry (trajectory.tum); a "
           "view of the run's memory.")
@@ -299,10 +296,7 @@ void bind_runs(py::module_& m) {
       .def_property_readonly(
           "truth",
           [](py::object self) {
-            const auto& t = self.cast<const SimulationData&>().truth;
-            return view<double>(reinterpret_cast<const double*>(t.data()),
-                                {static_cast<py::ssize_t>(t.size()), 4},
-                                {4 * sizeof(double), sizeof(double)}, self);
+            return trajectory_view(self.cast<const SimulationData&>().truth, self);
           },
           "(N, 4) (t, x, y, theta): the true robot poses at the scans.")
       .def_readonly("map", &SimulationData::map, "The scenario's map (a Map).")

@@ -18,10 +18,11 @@ namespace schema = pgmcl::config_schema;
 
 constexpr const char* kConfigDoc = R"doc(The filter configuration (pgmcl::LocalizerConfig).
 
-Config(overrides=None, /, **kwargs) starts from the documented defaults (or a copy of
-``overrides`` when it is a Config) and applies the overrides in order: dotted keys as on the command line's ``--set``
-(``Config({"filter.kld.max_particles": 5000})`` or ``Config(**{"filter.particles": 500})``)
-or nested dicts (``Config(filter={"particles": 500}, seed=7)``). Values are numbers, bools
+Config(overrides=None, /, **kwargs) starts from the documented defaults (or from a copy
+of ``overrides`` when that is a Config) and applies the overrides in order: dotted keys as
+on the command line's ``--set`` (``Config({"filter.kld.max_particles": 5000})`` or
+``Config(**{"filter.particles": 500})``) or nested dicts
+(``Config(filter={"particles": 500}, seed=7)``). Values are numbers, bools
 or str (enumerations by name, e.g. ``{"likelihood.table.kind": "oriented"}``); each is read
 and validated exactly as ``--set key=value``, so a bad one raises InputError (a ValueError)
 with the command line's message, field path included. Every key, its default, unit and

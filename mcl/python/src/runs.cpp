@@ -47,10 +47,8 @@ replay::InitialBelief initial_belief(py::handle init, py::handle sigma, bool hav
     } else if (s == "truth" && have_truth) {
       b.kind = replay::InitialBelief::Kind::kTruth;
     } else {
-      throw py::value_error(
-          "init: expected (x, y, theta), 'global', 'truth' (with truth=) or "
-          "None, got '" +
-          s + "'");
+      throw py::value_error("init: expected (x, y, theta), 'global', 'truth' (with truth=) " +
+                            std::string("or None, got '") + s + "'");
     }
   } else {
     b.kind = replay::InitialBelief::Kind::kPose;
@@ -59,16 +57,20 @@ replay::InitialBelief initial_belief(py::handle init, py::handle sigma, bool hav
   }
   if (sigma.is_none()) return b;
   std::vector<double> s;
-  for (const py::handle v : py::reinterpret_borrow<py::sequence>(sigma))
-    s.push_back(v.cast<double>());
-  const bool ok = (s.size() == 2 || s.size() == 3) && std::all_of(s.begin(), s.end(), [](double v) {
-                    return std::isfinite(v) && v > 0;
-                  });
+  bool ok = py::isinstance<py::sequence>(sigma) && !py::isinstance<py::str>(sigma);
+  try {
+    if (ok)
+      for (const py::handle v : py::reinterpret_borrow<py::sequence>(sigma))
+        s.push_back(v.cast<double>());
+  } catch (const py::cast_error&) {
+    ok = false;
+  }
+  ok = ok && (s.size() == 2 || s.size() == 3) &&
+       std::all_of(s.begin(), s.end(), [](double v) { return std::isfinite(v) && v > 0; });
   if (!ok) {
-    throw py::value_error(
-        "init_sigma: expected (s_xy, s_theta) or (s_x, s_y, s_theta), finite "
-        "and > 0 (m, rad), got " +
-        py::repr(sigma).cast<std::string>());
+    throw py::value_error("init_sigma: expected (s_xy, s_theta) or (s_x, s_y, s_theta), " +
+                          std::string("finite and > 0 (m, rad), got ") +
+                          py::repr(sigma).cast<std::string>());
   }
   b.sigma_xy = s[0];
   b.sigma_y = s.size() == 3 ? s[1] : -1.0;

@@ -6,9 +6,9 @@
 
 The case is what `bash cmake/demo.sh` writes to out/demo/intel/: map.yaml (a 5 cm map
 from the log's SLAM-corrected poses), raw.log.gz (the scans with seeded realistic wheel
-odometry) and truth.tum (the corrected poses). Without it, the script makes it from
-data/logs/intel-corrected.log.gz with the `pgmcl` binary (--pgmcl) into --work.
-Without --out the figure is shown in a window.
+odometry) and truth.tum (the corrected poses). When --case holds no map.yaml (or with
+--make-case), the script makes the case there from data/logs/intel-corrected.log.gz with the `pgmcl` binary
+(--pgmcl). Without --out the figure is shown in a window.
 """
 
 import argparse
@@ -64,6 +64,7 @@ def plot(m, run, truth, out):
     ax_head.set(title=f"heading error (RMSE {metrics['heading_rmse_deg']:.2f} deg)",
                 xlabel="time since the first scan [s]", ylabel="degrees")
     if out:
+        out.parent.mkdir(parents=True, exist_ok=True)
         fig.savefig(out, dpi=110)
         print(f"wrote {out}")
     else:
@@ -73,17 +74,18 @@ def plot(m, run, truth, out):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--case", type=pathlib.Path, default=REPO / "out" / "demo" / "intel",
-                        help="folder with map.yaml, raw.log.gz, truth.tum")
+                        help="folder with map.yaml, raw.log.gz, truth.tum (made if missing)")
     parser.add_argument("--pgmcl", default=REPO / "build" / "release" / "pgmcl",
-                        help="pgmcl binary, to make the case when --case has none")
-    parser.add_argument("--work", type=pathlib.Path, default=REPO / "out" / "python-intel",
-                        help="where to make the case")
-    parser.add_argument("--out", help="save the figure here (PNG) instead of showing it")
+                        help="pgmcl binary, to make the case")
+    parser.add_argument("--make-case", action="store_true",
+                        help="make the case in --case even if it is there")
+    parser.add_argument("--out", type=pathlib.Path,
+                        help="save the figure here (PNG) instead of showing it")
     args = parser.parse_args()
 
     case = args.case
-    if not (case / "map.yaml").exists():
-        case = make_intel_case(args.pgmcl, args.work)
+    if args.make_case or not (case / "map.yaml").exists():
+        make_intel_case(args.pgmcl, case)
     m = pgmcl.load_map(case / "map.yaml")
     truth = pgmcl.read_tum(case / "truth.tum")
     # The demo's filter (configs/experiments/intel-demo.yaml): motion noise that covers the

@@ -7,8 +7,8 @@
 The case is what `bash cmake/demo.sh` writes to out/demo/intel/: map.yaml (a 5 cm map
 from the log's SLAM-corrected poses), raw.log.gz (the scans with seeded realistic wheel
 odometry) and truth.tum (the corrected poses). When --case holds no map.yaml (or with
---make-case), the script makes the case there from data/logs/intel-corrected.log.gz with the `pgmcl` binary
-(--pgmcl). Without --out the figure is shown in a window.
+--make-case), the script makes the case there from data/logs/intel-corrected.log.gz with
+the `pgmcl` binary (--pgmcl). Without --out the figure is shown in a window.
 """
 
 import argparse

@@ -59,7 +59,7 @@ if readelf -d build/in_memory/pgmcl_in_memory | grep -E "NEEDED.*(yaml-cpp|libz\
 fi
 build/in_memory/pgmcl_in_memory
 # The Python module from the install prefix alone: Debian's python3, another folder, only
-# PYTHONPATH pointing into the prefix (mcl/python/README.md, "Install").
+# PYTHONPATH pointing into the prefix (mcl/python/README.md, "Build, path, install").
 pydir=$(sed -n 's/^PGMCL_PYTHON_INSTALL_DIR:STRING=//p' build/release/CMakeCache.txt)
 (cd /tmp && PYTHONPATH="$root/build/install/$pydir" /usr/bin/python3 -c "
 import pgmcl

@@ -65,7 +65,8 @@ int run_localize(const LocalizeOptions& o) {
     job.init.kind = InitialBelief::Kind::kTruth;
   }
   job.out_dir = o.out;
-  job.title = std::filesystem::path(o.log).filename().string();
+  job.map_name = o.map;
+  job.title = run_title(o.out, o.log);
   job.quiet = o.quiet;
   const io::RunMetrics m = run_localization(job);
   std::printf("%s\n", summary_line(m, o.out).c_str());

@@ -31,6 +31,25 @@ struct RunOptions {
   bool quiet = false;
 };
 
+/// The simulated moving obstacles over the run, for overlay.png.
+std::vector<ObstacleDrawing> obstacle_drawings(const sims::Scenario& sc,
+                                               const sims::SimulationLog& sim) {
+  std::vector<ObstacleDrawing> out;
+  const double t0 = sim.records.front().stamp, t1 = sim.records.back().stamp;
+  auto path = [&](const sims::ObstaclePath& p, double yaw) {
+    std::vector<Pose2> pts;
+    for (double t = t0; t <= t1 + 1e-9; t += 0.1) {
+      const sims::Point2 q = p.position_at(t);
+      pts.push_back({q.x, q.y, yaw});
+    }
+    return pts;
+  };
+  for (const sims::DiscObstacle& d : sc.discs) out.push_back({path(d.path, 0.0), d.radius, 0, 0});
+  for (const sims::BoxObstacle& b : sc.boxes)
+    out.push_back({path(b.path, b.yaw), 0.0, b.half_length, b.half_width});
+  return out;
+}
+
 InitialBelief to_belief(const io::Experiment& e, bool have_truth) {
   const io::ExperimentInit& init = e.init;
   InitialBelief b;
@@ -72,9 +91,11 @@ int run_run(const RunOptions& o) {
   job.title = e.name;
   job.quiet = o.quiet;
   maps::OccupancyGrid map, world;
+  std::string scenario_map;
   io::CarmenLog log;
   if (!e.scenario.empty()) {
     const io::ScenarioFile sf = io::read_scenario_file(e.scenario, world);
+    scenario_map = sf.map_path;
     const sims::SimulationLog sim = sims::simulate(sf.scenario, world);
     if (sim.records.empty())
       throw std::runtime_error(e.scenario + ": simulation produced no scans");
@@ -83,6 +104,8 @@ int run_run(const RunOptions& o) {
     log = io::to_carmen_log(sim);
     job.log_name = e.scenario + " (simulated)";
     job.truth = io::sim_truth_trajectory(sim);
+    job.obstacles = obstacle_drawings(sf.scenario, sim);
+    job.events = sim.kidnap_times;
     if (!o.quiet) {
       std::fprintf(stderr, "run: %s: simulated %zu scans from %s\n", e.name.c_str(),
                    sim.records.size(), e.scenario.c_str());
@@ -97,7 +120,9 @@ int run_run(const RunOptions& o) {
     map = maps::load_map(e.map, &report);
     for (const auto& w : report.warnings) std::fprintf(stderr, "pgmcl: warning: %s\n", w.c_str());
     job.map = &map;
+    job.map_name = e.map;
   } else {
+    job.map_name = scenario_map;
     job.map = &world;
   }
   job.log = &log;

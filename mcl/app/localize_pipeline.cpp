@@ -14,37 +14,14 @@
 #include "pgmcl/io/errors.hpp"
 #include "pgmcl/io/tum.hpp"
 #include "pgmcl/io/values.hpp"
-#include "plot.hpp"
 #include "png_overlay.hpp"
 #include "progress.hpp"
+#include "run_pictures.hpp"
 
 namespace pgmcl::app {
 namespace {
 
 constexpr double kRadToDeg = 180.0 / std::numbers::pi;
-constexpr std::size_t kMaxDrawnParticles = 5000;
-
-/// Position and heading error over time, one panel each.
-void write_error_png(const std::string& path, const io::AteResult& ate, double t0) {
-  PlotSeries pos{"position error", {}, {}, colors::kRed};
-  PlotSeries head{"heading error", {}, {}, colors::kBlue};
-  for (const io::PoseError& e : ate.errors) {
-    pos.x.push_back(e.stamp - t0);
-    pos.y.push_back(e.translation);
-    head.x.push_back(e.stamp - t0);
-    head.y.push_back(e.rotation_deg);
-  }
-  char title[160];
-  std::snprintf(title, sizeof title, "Position error (ATE RMSE %.3f m, max %.3f m)",
-                ate.translation.rms, ate.translation.max);
-  LinePlot p1{title, "time since first scan [s]", "metres", {pos}, 1000, 340, true};
-  std::snprintf(title, sizeof title, "Heading error (RMSE %.2f deg)", ate.heading.rms);
-  LinePlot p2{title, "time since first scan [s]", "degrees", {head}, 1000, 340, true};
-  Canvas c(1000, 680);
-  c.blit(render_line_plot(p1), 0, 0);
-  c.blit(render_line_plot(p2), 0, 340);
-  write_png(c, path);
-}
 
 void write_updates_csv(const std::string& path, const std::vector<replay::UpdateRow>& rows,
                        const io::Trajectory* truth) {
@@ -121,20 +98,34 @@ io::RunMetrics run_localization(const LocalizeJob& job) {
     f << io::localizer_config_yaml(job.config);
     if (!f) throw io::IoError((dir / "config.yaml").string() + ": write failed");
   }
-  std::vector<Pose2> est, truth_path, cloud;
+  std::vector<Pose2> est, truth_path;
   est.reserve(run.trajectory.size());
   for (const auto& t : run.trajectory) est.push_back(t.pose);
   if (job.truth) {
-    for (const auto& t : *job.truth) truth_path.push_back(t.pose);
+    io::Trajectory sorted = *job.truth;
+    io::sort_by_stamp(sorted);
+    for (const auto& t : sorted) truth_path.push_back(t.pose);
   }
-  const std::size_t stride = run.particles.size() / kMaxDrawnParticles + 1;
-  for (std::size_t i = 0; i < run.particles.size(); i += stride) cloud.push_back(run.particles[i]);
-  write_overlay_png((dir / "overlay.png").string(), *job.map,
-                    OverlayData{truth_path, est, cloud, job.title});
-  if (run.ate && !run.ate->errors.empty()) {
-    write_error_png((dir / "error.png").string(), *run.ate, run.trajectory.front().stamp);
+  const io::AteResult* ate = run.ate ? &*run.ate : nullptr;
+  const auto [search_begin, search_end] = search_range(run.trajectory, ate, job.events);
+  OverlayData overlay{truth_path,   est,        run.particles,
+                      run.weights,  job.title,  overlay_subtitle(run, job.log_name, job.map_name),
+                      search_begin, search_end, job.obstacles};
+  write_overlay_png((dir / "overlay.png").string(), *job.map, overlay);
+  if (ate && !ate->errors.empty()) {
+    ErrorPlotData e{ate, run.rows, run.trajectory.front().stamp, job.events};
+    write_png(render_error_plot(e), (dir / "error.png").string());
   }
   return run.metrics;
+}
+
+std::string run_title(const std::string& out_dir, const std::string& log) {
+  const std::filesystem::path out = std::filesystem::path(out_dir).lexically_normal();
+  std::string name = out.filename().string();
+  if (name.empty()) name = out.parent_path().filename().string();  // "dir/"
+  if (name.empty() || name == "." || name == "pgmcl-out")
+    name = std::filesystem::path(log).filename().string();
+  return name;
 }
 
 std::string summary_line(const io::RunMetrics& m, const std::string& out_dir) {

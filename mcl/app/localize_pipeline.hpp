@@ -11,8 +11,9 @@
 ///   config.yaml     the effective LocalizerConfig (every field), to rerun exactly
 ///   updates.csv     one row per update: estimate, skip reason, converged, fit, N_eff,
 ///                   particles, competing hypotheses, and the error with ground truth
-///   overlay.png     map + ground truth + estimate + final particle cloud
-///   error.png       position and heading error over time (only with ground truth)
+///   overlay.png     map + ground truth + estimate + final particle cloud (png_overlay.hpp)
+///   error.png       position and heading error over time, lock-on, what the filter said
+///                   (only with ground truth; run_pictures.hpp)
 
 #include <optional>
 #include <string>
@@ -20,6 +21,7 @@
 
 #include "pgmcl/eval/metrics.hpp"
 #include "pgmcl/replay/replay.hpp"
+#include "png_overlay.hpp"
 
 namespace pgmcl::app {
 
@@ -28,8 +30,11 @@ using replay::InitialBelief;
 /// A replay and where its results go.
 struct LocalizeJob : replay::ReplayJob {
   std::string out_dir;
-  std::string title;  ///< overlay caption
+  std::string title;     ///< the run's name: overlay.png's title
+  std::string map_name;  ///< the map file, for overlay.png's header
   bool quiet = false;
+  std::vector<ObstacleDrawing> obstacles;  ///< simulated moving obstacles, for overlay.png
+  std::vector<double> events;              ///< kidnap stamps (simulated), for error.png
 };
 
 /// Runs the job; returns the metrics also written to metrics.yaml. Throws on bad input
@@ -38,6 +43,10 @@ io::RunMetrics run_localization(const LocalizeJob& job);
 
 /// "X,Y,THETA[,SX,SY,STH]" from --init (metres, radians). Throws UsageError.
 [[nodiscard]] InitialBelief parse_init(const std::string& text);
+
+/// The name of a `localize` run: its output folder's name ("intel-global" for --out
+/// out/intel-global), or the log's file name for the default folder.
+[[nodiscard]] std::string run_title(const std::string& out_dir, const std::string& log);
 
 /// One line for the terminal: updates, timing, accuracy.
 [[nodiscard]] std::string summary_line(const io::RunMetrics& m, const std::string& out_dir);

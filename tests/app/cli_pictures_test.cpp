@@ -118,16 +118,141 @@ TEST(CliPictures, MapFramePutsWorldPointsOnTheirCells) {
 TEST(CliPictures, OverlayDrawsPathsAndParticles) {
   maps::OccupancyGrid g(100, 100, 0.05, Pose2{}, maps::kFree);
   std::vector<Pose2> truth{{1.0, 1.0, 0.0}, {4.0, 1.0, 0.0}}, est{{1.0, 4.0, 0.0}, {4.0, 4.0, 0.0}};
-  std::vector<Pose2> cloud{{2.5, 2.5, 0.0}};
-  const Canvas c = render_overlay(g, OverlayData{truth, est, cloud, ""});
+  // One particle on each path: the final cloud is drawn over the paths.
+  std::vector<Pose2> cloud{{2.0, 1.0, 0.0}, {3.0, 4.0, 0.0}};
+  OverlayData d;
+  d.truth = truth;
+  d.estimate = est;
+  d.particles = cloud;
+  OverlayLayout lay;
+  const Canvas c = render_overlay(g, d, &lay);
   const MapFrame f(g);
-  const PixelPoint mid_truth = f.to_pixel(2.5, 1.0), mid_est = f.to_pixel(2.5, 4.0);
-  const PixelPoint particle = f.to_pixel(2.5, 2.5);
-  EXPECT_EQ(c.at(static_cast<int>(mid_truth.x), static_cast<int>(mid_truth.y)), colors::kGreen);
-  EXPECT_EQ(c.at(static_cast<int>(mid_est.x), static_cast<int>(mid_est.y)), colors::kRed);
-  EXPECT_EQ(c.at(static_cast<int>(particle.x), static_cast<int>(particle.y)), colors::kOrange);
+  auto at = [&](double x, double y) {
+    const PixelPoint p = f.to_pixel(x, y);
+    return c.at(static_cast<int>(std::lround(p.x)) + lay.map_x,
+                static_cast<int>(std::lround(p.y)) + lay.map_y);
+  };
+  EXPECT_EQ(at(2.5, 1.0), colors::kGreen);
+  EXPECT_EQ(at(2.5, 4.0), colors::kRed);
+  EXPECT_EQ(at(2.0, 1.0), particle_colour(1.0));
+  EXPECT_EQ(at(3.0, 4.0), particle_colour(1.0));
   // y up in the world is up in the picture.
-  EXPECT_LT(mid_est.y, mid_truth.y);
+  EXPECT_LT(f.to_pixel(2.5, 4.0).y, f.to_pixel(2.5, 1.0).y);
+}
+
+TEST(CliPictures, OverlayHeaderAndCoordinatesStayOffTheMap) {
+  // A small free map: the title, figures and legend sit above it, coordinates beside it,
+  // so every map pixel away from the paths is still the map's white.
+  maps::OccupancyGrid g(60, 40, 0.05, Pose2{-1.0, -1.0, 0.0}, maps::kFree);
+  std::vector<Pose2> truth{{0.5, 0.2, 0.0}, {1.5, 0.2, 0.0}};
+  OverlayData d;
+  d.truth = truth;
+  d.estimate = truth;
+  d.title = "a-run-name";
+  d.subtitle = "the key figures of the run, long enough to wrap onto a second line of text";
+  OverlayLayout lay;
+  const Canvas c = render_overlay(g, d, &lay);
+  const MapFrame f(g);
+  EXPECT_GT(lay.map_y, 60);  // title, figures, legend rows
+  EXPECT_GT(lay.map_x, 20);  // y coordinates
+  int header_ink = 0;
+  for (int y = 0; y < lay.map_y - 6; ++y)
+    for (int x = 0; x < c.width(); ++x) header_ink += c.at(x, y) != colors::kWhite;
+  EXPECT_GT(header_ink, 500);
+  // The map's upper half is untouched (the paths run along its bottom).
+  const PixelPoint path_top = f.to_pixel(0.0, 0.5);
+  for (int y = 0; y < static_cast<int>(path_top.y); ++y)
+    for (int x = 0; x < f.width(); ++x)
+      ASSERT_EQ(c.at(x + lay.map_x, y + lay.map_y), colors::kWhite) << x << "," << y;
+  // Tick labels in the left and bottom margins.
+  int margin_ink = 0;
+  for (int y = lay.map_y; y < lay.map_y + f.height(); ++y)
+    for (int x = 0; x < lay.map_x - 6; ++x) margin_ink += c.at(x, y) == colors::kBlack;
+  EXPECT_GT(margin_ink, 20);
+}
+
+TEST(CliPictures, OverlayZoomsOnASmallFinalCloudOnly) {
+  maps::OccupancyGrid g(800, 800, 0.05, Pose2{}, maps::kFree);  // 40 m
+  std::vector<Pose2> est{{5.0, 5.0, 0.0}, {20.0, 20.0, 0.5}};
+  std::vector<Pose2> tight, spread;
+  std::vector<double> w;
+  for (int i = 0; i < 50; ++i) {
+    tight.push_back({20.0 + 0.004 * i, 20.0 - 0.003 * i, 0.5});
+    spread.push_back({1.0 + 0.7 * i, 38.0 - 0.7 * i, 0.0});
+    w.push_back(i == 49 ? 1.0 : 0.1);
+  }
+  OverlayData d;
+  d.estimate = est;
+  d.particles = tight;
+  d.weights = w;
+  OverlayLayout lay;
+  const Canvas c = render_overlay(g, d, &lay);
+  ASSERT_TRUE(lay.zoom);
+  EXPECT_GT(lay.zoom_x, lay.map_x + 700);
+  EXPECT_EQ(lay.zoom_metres, 1.0);
+  // Heavy and light particles in the zoomed view, in their two shades.
+  int heavy = 0, light = 0;
+  for (int y = lay.zoom_y; y < lay.zoom_y + lay.zoom_side; ++y) {
+    for (int x = lay.zoom_x; x < lay.zoom_x + lay.zoom_side; ++x) {
+      heavy += c.at(x, y) == particle_colour(1.0);
+      light += c.at(x, y) == particle_colour(0.1);
+    }
+  }
+  EXPECT_GT(heavy, 5);
+  EXPECT_GT(light, 100);
+  d.particles = spread;
+  (void)render_overlay(g, d, &lay);
+  EXPECT_FALSE(lay.zoom);
+}
+
+TEST(CliPictures, OverlayArrowsAreSizedForThePictureNotInMetres) {
+  // The same 800-cell picture of a 4 m (5 mm) and a 40 m (5 cm) map: the end arrow has the
+  // same length in pixels on both (it was 0.6 m: 120 px on the lab map, 12 px here).
+  auto red_pixels = [](double res) {
+    maps::OccupancyGrid g(800, 800, res, Pose2{}, maps::kFree);
+    std::vector<Pose2> est{{400 * res, 400 * res, 0.0}};
+    OverlayData d;
+    d.estimate = est;
+    const Canvas c = render_overlay(g, d);
+    int n = 0;
+    for (int y = 0; y < c.height(); ++y)
+      for (int x = 0; x < c.width(); ++x) n += c.at(x, y) == colors::kRed;
+    return n;
+  };
+  const int fine = red_pixels(0.005), coarse = red_pixels(0.05);
+  EXPECT_GT(fine, 50);
+  EXPECT_EQ(fine, coarse);
+  EXPECT_DOUBLE_EQ(arrow_pixels(1000), 30.0);
+}
+
+TEST(CliPictures, OverlayBreaksPathsAtJumpsAndDrawsObstacles) {
+  std::vector<Pose2> path;
+  for (int i = 0; i < 20; ++i) path.push_back({0.1 * i, 0.0, 0.0});
+  for (int i = 0; i < 20; ++i) path.push_back({10.0 + 0.1 * i, 5.0, 0.0});  // a kidnap
+  EXPECT_EQ(path_jumps(path), std::vector<std::size_t>{20});
+  EXPECT_TRUE(path_jumps(std::span(path).first(20)).empty());
+  maps::OccupancyGrid g(300, 200, 0.05, Pose2{-1.0, -2.0, 0.0}, maps::kFree);
+  OverlayData d;
+  d.truth = path;
+  ObstacleDrawing person;
+  person.radius = 0.25;
+  person.path = {{2.0, 4.0, 0.0}, {4.0, 4.0, 0.0}};
+  d.obstacles = {person};
+  OverlayLayout lay;
+  const Canvas c = render_overlay(g, d, &lay);
+  const MapFrame f(g);
+  // Midway along the jump: not the thick green line (a thin dotted one at most).
+  const PixelPoint mid = f.to_pixel(6.0, 2.5);
+  int green = 0;
+  for (int dy = -2; dy <= 2; ++dy)
+    for (int dx = -2; dx <= 2; ++dx)
+      green += c.at(static_cast<int>(mid.x) + lay.map_x + dx,
+                    static_cast<int>(mid.y) + lay.map_y + dy) == colors::kGreen;
+  EXPECT_LT(green, 8);
+  int purple = 0;
+  for (int y = lay.map_y; y < c.height(); ++y)
+    for (int x = 0; x < c.width(); ++x) purple += c.at(x, y) == colors::kPurple;
+  EXPECT_GT(purple, 30);
 }
 
 TEST(CliPictures, NiceTicksAreOneTwoFiveStepsCoveringTheRange) {

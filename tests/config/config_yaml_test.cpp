@@ -156,7 +156,7 @@ TEST(CliConfig, SetOverridesUseDottedKeys) {
 TEST(CliConfig, BundledExamplesParse) {
   LocalizerConfig c;
   read_localizer_config(PGMCL_SOURCE_DIR "/configs/filters/tracking.yaml", c);
-  EXPECT_EQ(c.filter.kld.max_particles, 5000u);
+  EXPECT_EQ(c.filter.kld.max_particles, 20000u);
   const Experiment e = read_experiment(PGMCL_SOURCE_DIR "/configs/experiments/lab.yaml");
   EXPECT_EQ(e.name, "lab");
   EXPECT_EQ(e.init.kind, ExperimentInit::Kind::kTruth);

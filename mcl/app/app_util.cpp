@@ -30,8 +30,43 @@ void ensure_parent_directory(const std::string& file) {
 }
 
 io::Trajectory load_truth(const std::string& path) {
-  if (!io::is_carmen_path(path)) return io::read_tum(path);
+  const io::FileKind kind = io::detect_file_kind(path);
+  const bool log = kind == io::FileKind::kCarmenLog ||
+                   (kind != io::FileKind::kNumberTable && io::is_carmen_path(path));
+  if (!log) return io::read_tum(path);
   return io::log_truth(read_log(path, {}, false), path);
+}
+
+CLI::Validator file_kind(std::initializer_list<io::FileKind> accepted, std::string wanted) {
+  return CLI::Validator(
+      [kinds = std::vector<io::FileKind>(accepted), wanted](std::string& path) {
+        return io::file_kind_problem(path, kinds, wanted);
+      },
+      "", "file kind");
+}
+
+CLI::Validator map_file() {
+  return file_kind({io::FileKind::kMapYaml, io::FileKind::kOtherYaml},
+                   "a map YAML (map_server: image, resolution, origin)");
+}
+CLI::Validator log_file() {
+  return file_kind({io::FileKind::kCarmenLog}, "a CARMEN log");
+}
+CLI::Validator trajectory_file(bool log_ok) {
+  if (!log_ok) {
+    return file_kind({io::FileKind::kNumberTable},
+                     "a TUM trajectory (stamp x y z qx qy qz qw per line)");
+  }
+  return file_kind({io::FileKind::kNumberTable, io::FileKind::kCarmenLog},
+                   "a TUM trajectory or a corrected CARMEN log");
+}
+CLI::Validator filter_file() {
+  return file_kind({io::FileKind::kFilterYaml, io::FileKind::kOtherYaml},
+                   "a filter configuration (configs/filters/)");
+}
+CLI::Validator relations_file() {
+  return file_kind({io::FileKind::kNumberTable},
+                   "a relations file (t1 t2 x y z roll pitch yaw per line)");
 }
 
 namespace {

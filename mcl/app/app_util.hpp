@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "pgmcl/io/carmen.hpp"
+#include "pgmcl/io/file_kind.hpp"
 
 namespace pgmcl::app {
 
@@ -26,8 +27,21 @@ void ensure_parent_directory(const std::string& file);
                                      bool strict);
 
 /// Ground truth from a TUM file, or from a CARMEN log (the robot poses of its laser scans,
-/// io::scan_truth, of the first laser message type with poses), chosen by io::is_carmen_path.
+/// io::scan_truth, of the first laser message type with poses), chosen by the content
+/// (io::detect_file_kind), else by io::is_carmen_path.
 [[nodiscard]] io::Trajectory load_truth(const std::string& path);
+
+/// CLI11 check that an input is the kind of file its option takes (io::file_kind_problem):
+/// "--map: 'm.pgm' is a PGM image, not a map YAML ...; a map is its YAML ...".
+[[nodiscard]] CLI::Validator file_kind(std::initializer_list<io::FileKind> accepted,
+                                       std::string wanted);
+/// The common ones: a map YAML, a CARMEN log, a TUM trajectory (or, with `log_ok`, a
+/// corrected CARMEN log), a filter configuration, a relations file.
+[[nodiscard]] CLI::Validator map_file();
+[[nodiscard]] CLI::Validator log_file();
+[[nodiscard]] CLI::Validator trajectory_file(bool log_ok);
+[[nodiscard]] CLI::Validator filter_file();
+[[nodiscard]] CLI::Validator relations_file();
 
 /// CLI11 checks with short messages ("must be > 0" rather than CLI11's range dump).
 [[nodiscard]] CLI::Validator positive();

@@ -184,7 +184,8 @@ Command add_calibrate_command(CLI::App& app) {
   RangeOptions& r = o->range;
   o->range_cmd = sub->add_subcommand("range", "Along-beam sigma from repeated readings");
   auto* rlog = o->range_cmd->add_option("--log", r.log, "Log of a stationary scanner")
-                   ->check(CLI::ExistingFile);
+                   ->check(CLI::ExistingFile)
+                   ->check(log_file());
   o->range_cmd->add_option("--beam", r.beam, "Beam index (with --log)")->capture_default_str();
   o->range_cmd->add_option("--experiments", r.experiments, "Split the log into this many")
       ->capture_default_str()
@@ -207,7 +208,8 @@ Command add_calibrate_command(CLI::App& app) {
   EdgeOptions& e = o->edge;
   o->edge_cmd = sub->add_subcommand("edge", "Across-beam sigma from edge-boundary jitter");
   auto* elog = o->edge_cmd->add_option("--log", e.log, "Log of a stationary scanner at an edge")
-                   ->check(CLI::ExistingFile);
+                   ->check(CLI::ExistingFile)
+                   ->check(log_file());
   o->edge_cmd->add_option("--first-beam", e.first_beam, "A beam on the object (with --log)");
   o->edge_cmd->add_option("--split-range", e.split_range,
                           "Metres: shorter readings are on the object (with --log)");

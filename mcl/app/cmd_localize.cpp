@@ -80,11 +80,15 @@ Command add_localize_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("localize", "Localise a logged robot on a map");
   sub->add_option("--map", o->map, "Map YAML (ROS map_server)")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(CLI::ExistingFile)
+      ->check(map_file());
   sub->add_option("--log", o->log, "CARMEN log (.log, .clf, optionally .gz)")
       ->required()
-      ->check(CLI::ExistingFile);
-  sub->add_option("--config", o->config, "Filter configuration YAML")->check(CLI::ExistingFile);
+      ->check(CLI::ExistingFile)
+      ->check(log_file());
+  sub->add_option("--config", o->config, "Filter configuration YAML")
+      ->check(CLI::ExistingFile)
+      ->check(filter_file());
   sub->add_option("--set", o->sets, "Override a config key, e.g. filter.particles=2000")
       ->take_all();
   auto* init =
@@ -92,9 +96,11 @@ Command add_localize_command(CLI::App& app) {
   auto* global = sub->add_flag("--global", o->global, "Start with global localisation");
   init->excludes(global);
   sub->add_option("--truth", o->truth, "Ground truth: TUM file or a corrected CARMEN log")
-      ->check(CLI::ExistingFile);
+      ->check(CLI::ExistingFile)
+      ->check(trajectory_file(true));
   auto* rel = sub->add_option("--relations", o->relations, "Benchmark relations file")
-                  ->check(CLI::ExistingFile);
+                  ->check(CLI::ExistingFile)
+                  ->check(relations_file());
   sub->add_option("--time-offset", o->time_offset,
                   "Seconds added to log stamps to match the relations")
       ->needs(rel);

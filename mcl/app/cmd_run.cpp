@@ -143,7 +143,9 @@ Command add_run_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("run", "Run an experiment file (map + data + filter)");
   sub->add_option("experiment", o->experiment, "Experiment YAML")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(CLI::ExistingFile)
+      ->check(file_kind({io::FileKind::kExperiment, io::FileKind::kOtherYaml},
+                        "an experiment file (map + data + filter; configs/experiments/)"));
   sub->add_option("--out", o->out, "Output directory (default: the experiment's `out`)");
   sub->add_option("--set", o->sets,
                   "Override an experiment key: filter.<key>=v, name, map, out, init, data.*")

@@ -62,7 +62,9 @@ Command add_simulate_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("simulate", "Simulate a scenario into a CARMEN log");
   sub->add_option("scenario", o->scenario, "Scenario YAML (configs/scenarios/)")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(CLI::ExistingFile)
+      ->check(file_kind({io::FileKind::kScenario, io::FileKind::kOtherYaml},
+                        "a scenario (configs/scenarios/)"));
   sub->add_option("--out", o->out, "Output CARMEN log (.gz ok)")->required();
   sub->add_option("--truth", o->truth, "Also write the true trajectory (TUM)");
   sub->add_flag("--quiet", o->quiet, "No summary line");

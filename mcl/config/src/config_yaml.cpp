@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "config_yaml_detail.hpp"
+#include "pgmcl/config/key_hints.hpp"
 #include "pgmcl/io/values.hpp"
 #include "pgmcl/mcl/config_schema.hpp"
 #include "yaml_reader.hpp"
@@ -179,8 +180,8 @@ class ReferenceVisitor {
     return k + name;
   }
   void row(const schema::Field& f, const std::string& value, const std::string& allowed) {
-    *out_ << "| `" << key(f.name) << "` | " << value << " | " << f.unit << " | " << allowed
-          << " | " << f.doc << " |\n";
+    *out_ << "| `" << key(f.name) << "` | " << value << " | " << f.unit << " | " << allowed << " | "
+          << f.doc << " |\n";
   }
   std::ostringstream* out_;
   std::vector<const char*> path_;
@@ -198,6 +199,12 @@ void read_localizer_node(const std::string& file, const YAML::Node& node, const 
   std::size_t root_line = 0;
   try {
     YamlMap root(file, node, path);
+    // Fields are dotted from the file's root; the hints want them from the config's.
+    const std::string prefix = path.empty() ? "" : path + ".";
+    root.set_hint([prefix](const std::string& field) {
+      return localizer_key_hint(field.substr(field.rfind(prefix, 0) == 0 ? prefix.size() : 0),
+                                prefix);
+    });
     root_line = root.line();
     ReadVisitor reader(root, lines);
     schema::describe_config(reader, c);

@@ -29,8 +29,8 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
   for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
   for (std::size_t i = 1; i <= a.size(); ++i)
     for (std::size_t j = 1; j <= b.size(); ++j) {
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1,
-                          d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      d[i][j] = std::min(
+          {d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
       if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
         d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
     }
@@ -186,7 +186,9 @@ bool YamlMap::pose(const char* key, Pose2& out) {
 
 YamlMap YamlMap::child(const char* key) {
   const YAML::Node n = take(key);
-  return YamlMap(file_, n, field(key), line(key));
+  YamlMap m(file_, n, field(key), line(key));
+  m.hint_ = hint_;
+  return m;
 }
 
 std::vector<std::pair<YAML::Node, std::string>> YamlMap::sequence(const char* key) {
@@ -205,8 +207,18 @@ void YamlMap::finish() const {
     const std::string& key = kv.first.Scalar();
     if (read_.count(key) != 0) continue;
     std::string problem = "unknown key";
-    if (const std::string near = closest_key(key); !near.empty())
+    const std::string hint = hint_ ? hint_(field(key)) : std::string();
+    if (!hint.empty()) {
+      problem += ": " + hint;
+    } else if (const std::string near = closest_key(key); !near.empty()) {
       problem += " (did you mean '" + near + "'?)";
+    }
+    if (!read_.empty()) {
+      std::string keys;
+      for (const std::string& k : read_) keys += (keys.empty() ? "" : ", ") + k;
+      problem +=
+          "; keys " + (path_.empty() ? std::string("at the top") : "under " + path_) + ": " + keys;
+    }
     throw FormatError(file_, yaml_line(kv.first), field(key), problem);
   }
 }

@@ -172,6 +172,8 @@ ReplayResult run(const ReplayJob& job, const ReplayHooks& hooks) {
 
   if (job.truth && !out.trajectory.empty()) {
     out.ate = io::evaluate_ate(out.trajectory, *job.truth);
+    if (const std::string w = io::ate_match_warning(*out.ate); !w.empty())
+      out.warnings.push_back(job.log_name + " against the ground truth: " + w);
     out.metrics.accuracy = io::accuracy_metrics(*out.ate);
     count_false_convergence(out.rows, *out.ate, *out.metrics.accuracy);
   }

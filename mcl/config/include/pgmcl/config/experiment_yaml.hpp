@@ -19,7 +19,9 @@
 ///
 /// Relative paths are relative to the experiment file's folder (`out` too). Errors throw
 /// ConfigError "file:line: key: problem" (unknown keys, wrong types, both or neither of
-/// data.log and data.scenario, and the filter's own errors at their lines).
+/// data.log and data.scenario, and the filter's own errors at their lines); an input path
+/// that does not exist, or is the wrong kind of file (io::detect_file_kind), is an error
+/// naming the key, the path as written and the folder it was resolved against.
 
 #include <optional>
 #include <string>
@@ -57,7 +59,9 @@ struct Experiment {
 /// `filter.` go to the LocalizerConfig (apply_localizer_override), and name, map, out,
 /// init, data.log, data.scenario, data.truth, data.relations, data.time_offset replace
 /// those values (paths relative to the current directory, as typed on a command line).
-/// Throws ConfigError (file errors), UsageError (a bad --set), IoError (unreadable file).
+/// Then every input path must exist and be of its kind. Throws ConfigError (file errors,
+/// missing inputs), UsageError (a bad --set, a missing input it named, a wrong kind of
+/// file), IoError (unreadable file).
 [[nodiscard]] Experiment read_experiment(const std::string& path,
                                          const std::vector<std::string>& sets = {});
 

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <stdexcept>
 #include <system_error>
+#include <thread>
 
 #include "cli_errors.hpp"
 #include "pgmcl/io/errors.hpp"
@@ -202,6 +203,15 @@ std::string format_seconds(double s) {
     std::snprintf(buf, sizeof buf, "%.1f s", s);
   }
   return buf;
+}
+
+void warn_if_oversubscribed(int threads) {
+  const unsigned cores = std::thread::hardware_concurrency();
+  if (threads <= 0 || cores == 0 || static_cast<unsigned>(threads) <= cores) return;
+  std::fprintf(stderr,
+               "pgmcl: warning: %d threads on %u cores: the threads take turns and each update "
+               "gets slower, not faster (the result is the same for any count)\n",
+               threads, cores);
 }
 
 }  // namespace pgmcl::app

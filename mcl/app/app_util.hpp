@@ -85,6 +85,10 @@ class DeprecatedName {
   std::string new_name_;
 };
 
+/// "pgmcl: warning: --threads 64 is more than the 2 cores here; ..." on stderr when `threads`
+/// exceeds std::thread::hardware_concurrency() (0, OpenMP's default, never warns).
+void warn_if_oversubscribed(int threads);
+
 /// "12.3 s" / "1.23 ms" style durations for summaries.
 [[nodiscard]] std::string format_seconds(double s);
 

@@ -69,7 +69,7 @@ int run_localize(const LocalizeOptions& o) {
   job.title = run_title(o.out, o.log);
   job.quiet = o.quiet;
   const io::RunMetrics m = run_localization(job);
-  std::printf("%s\n", summary_line(m, o.out).c_str());
+  std::printf("%s\n", summary_line(m, o.out, job.config).c_str());
   return 0;
 }
 

@@ -132,7 +132,7 @@ int run_run(const RunOptions& o) {
   }
   job.init = to_belief(e, job.truth.has_value());
   const io::RunMetrics m = run_localization(job);
-  std::printf("%s: %s\n", e.name.c_str(), summary_line(m, e.out).c_str());
+  std::printf("%s: %s\n", e.name.c_str(), summary_line(m, e.out, job.config).c_str());
   return 0;
 }
 

@@ -85,6 +85,7 @@ io::RunMetrics run_localization(const LocalizeJob& job) {
                   r.converged ? ", converged" : "");
     progress->update(done, extra);
   };
+  warn_if_oversubscribed(job.config.threads);
   const replay::ReplayResult run = replay::run(job, hooks);
   if (progress) progress->finish();
   for (const std::string& w : run.warnings) std::fprintf(stderr, "pgmcl: warning: %s\n", w.c_str());
@@ -128,16 +129,33 @@ std::string run_title(const std::string& out_dir, const std::string& log) {
   return name;
 }
 
-std::string summary_line(const io::RunMetrics& m, const std::string& out_dir) {
+std::string summary_line(const io::RunMetrics& m, const std::string& out_dir,
+                         const LocalizerConfig& config) {
   char buf[512];
-  int n = std::snprintf(buf, sizeof buf,
-                        "localize: %zu updates (%zu skipped), %.2f ms/update (p95 %.2f), "
-                        "%zu..%zu particles (mean %.0f), %.0f beams, fit %.2f, converged on "
-                        "%.0f %% of updates",
-                        m.updates, m.skipped_updates, m.update_ms_mean, m.update_ms_p95,
-                        m.particles_min, m.particles_max, m.particles_mean, m.beams_used_mean,
-                        m.fit_mean, 100.0 * m.converged_fraction);
+  int n =
+      std::snprintf(buf, sizeof buf,
+                    "localize: %zu updates (%zu skipped), %.2f ms/update (median %.2f, p95 "
+                    "%.2f, max %.1f%s), particles %zu..%zu (mean %.0f)",
+                    m.updates, m.skipped_updates, m.update_ms_mean, m.update_ms_median,
+                    m.update_ms_p95, m.update_ms_max,
+                    m.update_ms_mean > m.update_ms_p95 ? "; a few slow updates lift the mean" : "",
+                    m.particles_min, m.particles_max, m.particles_mean);
   std::string s(buf, static_cast<std::size_t>(std::max(n, 0)));
+  // KLD-sampling, not filter.particles, decides the count once the filter runs: say so when
+  // the count moved, so "filter.particles=5000" running at 527 is no surprise.
+  const auto& kld = config.filter.kld;
+  if (kld.enabled && m.updates > 0 &&
+      (m.particles_min != m.particles_max || m.particles_min != config.filter.particles)) {
+    n = std::snprintf(buf, sizeof buf,
+                      " sized by KLD-sampling within filter.kld %zu..%zu (filter.particles %zu "
+                      "and filter.global_particles %zu are where it starts)",
+                      kld.min_particles, kld.max_particles, config.filter.particles,
+                      config.filter.global_particles);
+    s.append(buf, static_cast<std::size_t>(std::max(n, 0)));
+  }
+  n = std::snprintf(buf, sizeof buf, ", %.0f beams, fit %.2f, converged on %.0f %% of updates",
+                    m.beams_used_mean, m.fit_mean, 100.0 * m.converged_fraction);
+  s.append(buf, static_cast<std::size_t>(std::max(n, 0)));
   if (m.accuracy) {
     const auto& a = *m.accuracy;
     n = std::snprintf(buf, sizeof buf, "; ATE RMSE %.3f m (max %.3f), heading RMSE %.2f deg",

@@ -119,7 +119,8 @@ class WriteVisitor {
     body();
     *out_ << YAML::EndMap;
   }
-  void number(const schema::Field& f, double v, const schema::Bounds&) { put(f, v); }
+  // Numbers as the shortest text that reads back exactly (io::format_number).
+  void number(const schema::Field& f, double v, const schema::Bounds&) { put(f, format_number(v)); }
   void flag(const schema::Field& f, bool v) { put(f, v); }
   template <class T>
   void integer(const schema::Field& f, T v, const schema::IntRange&) {
@@ -303,7 +304,6 @@ std::string localizer_config_reference() {
 
 std::string localizer_config_yaml(const LocalizerConfig& c) {
   YAML::Emitter out;
-  out.SetDoublePrecision(17);
   out << YAML::Comment("pgmcl LocalizerConfig (units: metres, radians)");
   out << YAML::BeginMap;
   WriteVisitor writer(out);

@@ -35,7 +35,11 @@ io::Trajectory load_truth(const std::string& path) {
   const bool log = kind == io::FileKind::kCarmenLog ||
                    (kind != io::FileKind::kNumberTable && io::is_carmen_path(path));
   if (!log) return io::read_tum(path);
-  return io::log_truth(read_log(path, {}, false), path);
+  try {
+    return io::log_truth(read_log(path, {}, false), path);
+  } catch (const io::UsageError& e) {
+    throw std::runtime_error(e.what());  // bad input (exit 1), not a bad command line
+  }
 }
 
 CLI::Validator file_kind(std::initializer_list<io::FileKind> accepted, std::string wanted) {

@@ -86,7 +86,14 @@ io::RunMetrics run_localization(const LocalizeJob& job) {
     progress->update(done, extra);
   };
   warn_if_oversubscribed(job.config.threads);
-  const replay::ReplayResult run = replay::run(job, hooks);
+  const replay::ReplayResult run = [&] {
+    try {
+      return replay::run(job, hooks);
+    } catch (const io::UsageError& e) {
+      // A log without odometry is bad input (exit 1), not a bad command line (exit 2).
+      throw std::runtime_error(e.what());
+    }
+  }();
   if (progress) progress->finish();
   for (const std::string& w : run.warnings) std::fprintf(stderr, "pgmcl: warning: %s\n", w.c_str());
 

@@ -97,6 +97,22 @@ TEST(CliLocalize, MoreThreadsThanCoresWarns) {
   EXPECT_EQ(one.err.find("threads on"), std::string::npos) << one.err;
 }
 
+TEST(CliLocalize, ALogWithoutOdometryIsBadInputNotABadCommandLine) {
+  TempDir dir("cli_localize_no_odom");
+  prepare(dir);
+  // RAWLASER1 scans carry no pose, and there is no ODOM message: nothing to localise.
+  io::CarmenLog log = io::read_carmen(dir.file("raw.log"));
+  log.odometry.clear();
+  for (auto& s : log.scans) {
+    s.message = io::LaserMessage::kRawLaser1;
+    s.has_poses = false;
+  }
+  io::write_carmen(dir.file("no_odom.log"), log);
+  const RunResult r = run_pgmcl("localize --map room.yaml --log no_odom.log --quiet", dir);
+  EXPECT_EQ(r.code, 1) << r.err;  // mcl/app/README.md: 2 is for a bad command line only
+  EXPECT_NE(r.err.find("no laser scan with odometry"), std::string::npos) << r.err;
+}
+
 TEST(CliLocalize, GlobalLocalisationFindsTheRobot) {
   TempDir dir("cli_localize_global");
   prepare(dir);

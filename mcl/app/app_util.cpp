@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <stdexcept>
 #include <system_error>
 #include <thread>
@@ -48,6 +49,17 @@ CLI::Validator file_kind(std::initializer_list<io::FileKind> accepted, std::stri
         return io::file_kind_problem(path, kinds, wanted);
       },
       "", "file kind");
+}
+
+CLI::Validator length_in(const std::string& unit) {
+  const double per_m = unit == "mm" ? 1000.0 : 1.0;  // this unit's value of one metre
+  std::map<std::string, double> factors{
+      {"mm", per_m / 1000.0}, {"cm", per_m / 100.0}, {"m", per_m}};
+  CLI::Validator v = CLI::AsNumberWithUnit(
+      factors, static_cast<CLI::AsNumberWithUnit::Options>(CLI::AsNumberWithUnit::CASE_SENSITIVE |
+                                                           CLI::AsNumberWithUnit::UNIT_OPTIONAL));
+  v.description("");  // the option's help names its unit
+  return v;
 }
 
 CLI::Validator map_file() {

@@ -43,6 +43,10 @@ void ensure_parent_directory(const std::string& file);
 [[nodiscard]] CLI::Validator filter_file();
 [[nodiscard]] CLI::Validator relations_file();
 
+/// A length with an optional unit ("5", "5mm", "0.5cm", "0.005m"), converted to `unit`
+/// ("mm" or "m"): a bare number is already in `unit`, which the option's help says.
+[[nodiscard]] CLI::Validator length_in(const std::string& unit);
+
 /// CLI11 checks with short messages ("must be > 0" rather than CLI11's range dump).
 [[nodiscard]] CLI::Validator positive();
 [[nodiscard]] CLI::Validator non_negative();

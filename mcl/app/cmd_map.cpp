@@ -93,9 +93,11 @@ Command add_map_command(CLI::App& app) {
   sub->add_option("--image", o->image,
                   "Image file name next to the YAML (.pgm, .pgm.gz or .png; default <stem>.pgm)");
   auto& m = o->mapping;
-  sub->add_option("--resolution", m.resolution, "Metres per cell")
+  sub->add_option("--resolution", m.resolution, "Metres per cell (or with a unit: 5cm, 50mm)")
       ->capture_default_str()
-      ->check(positive());
+      ->transform(length_in("m"))
+      ->check(positive())
+      ->type_name("M");
   sub->add_option("--margin", m.margin, "Metres of border around the data")
       ->capture_default_str()
       ->check(non_negative());

@@ -2,6 +2,7 @@
 /// (schema: mcl/io/include/pgmcl/config/experiment_yaml.hpp). A simulated log and its truth
 /// are kept in the output directory (sim.log.gz, truth.tum) so the run can be replayed.
 
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -28,6 +29,10 @@ struct RunOptions {
   std::string experiment;
   std::string out;
   std::vector<std::string> sets;
+  int threads = 1;
+  std::uint64_t seed = 42;
+  CLI::Option* threads_opt = nullptr;
+  CLI::Option* seed_opt = nullptr;
   bool quiet = false;
 };
 
@@ -80,9 +85,13 @@ InitialBelief to_belief(const io::Experiment& e, bool have_truth) {
 }
 
 int run_run(const RunOptions& o) {
+  // Precedence as in localize: the file < --set (in order) < --threads / --seed.
   std::vector<std::string> sets = o.sets;
   if (!o.out.empty()) sets.push_back("out=" + o.out);
+  if (o.threads_opt->count() > 0) sets.push_back("threads=" + std::to_string(o.threads));
+  if (o.seed_opt->count() > 0) sets.push_back("seed=" + std::to_string(o.seed));
   const io::Experiment e = io::read_experiment(o.experiment, sets);
+  for (const std::string& n : e.notes) std::fprintf(stderr, "pgmcl: note: %s\n", n.c_str());
   const std::filesystem::path out = ensure_directory(e.out);
 
   LocalizeJob job;
@@ -96,7 +105,7 @@ int run_run(const RunOptions& o) {
   if (!e.scenario.empty()) {
     const io::ScenarioFile sf = io::read_scenario_file(e.scenario, world);
     scenario_map = sf.map_path;
-    const sims::SimulationLog sim = sims::simulate(sf.scenario, world);
+    const sims::SimulationLog sim = sims::simulate(sf.scenario, world, e.filter.threads);
     if (sim.records.empty())
       throw std::runtime_error(e.scenario + ": simulation produced no scans");
     io::write_sim_carmen((out / "sim.log.gz").string(), sim);
@@ -148,8 +157,12 @@ Command add_run_command(CLI::App& app) {
                         "an experiment file (map + data + filter; configs/experiments/)"));
   sub->add_option("--out", o->out, "Output directory (default: the experiment's `out`)");
   sub->add_option("--set", o->sets,
-                  "Override an experiment key: filter.<key>=v, name, map, out, init, data.*")
+                  "Override a key: a filter key as in localize (filter.particles=500), or name, "
+                  "map, out, init (x,y,theta[,sx,sy,stheta] or YAML), data.*")
       ->take_all();
+  o->threads_opt = sub->add_option("--threads", o->threads, "OpenMP threads (0 = OpenMP default)")
+                       ->check(non_negative());
+  o->seed_opt = sub->add_option("--seed", o->seed, "Random seed of the filter");
   sub->add_flag("--quiet", o->quiet, "No progress output");
   return {sub, [o] { return run_run(*o); }};
 }

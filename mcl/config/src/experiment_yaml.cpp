@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <map>
+#include <sstream>
 
 #include "config_yaml_detail.hpp"
 #include "pgmcl/io/file_kind.hpp"
@@ -166,20 +167,33 @@ void read_file(const std::string& path, Experiment& e, PathOrigins& origins) {
   root.finish();
 }
 
-void apply_set(const std::string& assignment, Experiment& e, PathOrigins& origins) {
+/// "1,2,3" (x, y, theta) or "1,2,3,0.1,0.1,0.05" (and sigmas), as --init takes them, in
+/// the YAML form init: reads; anything else unchanged.
+std::string init_value(const std::string& value) {
+  if (value.find(',') == std::string::npos || value.find_first_of("[{") != std::string::npos)
+    return value;
+  std::vector<std::string> parts;
+  std::stringstream ss(value);
+  for (std::string p; std::getline(ss, p, ',');) parts.push_back(p);
+  auto list = [&](std::size_t from) {
+    return "[" + parts[from] + ", " + parts[from + 1] + ", " + parts[from + 2] + "]";
+  };
+  if (parts.size() == 3) return list(0);
+  if (parts.size() == 6) return "{pose: " + list(0) + ", sigma: " + list(3) + "}";
+  return value;
+}
+
+constexpr const char* kExperimentKeys =
+    "name, map, out, init, data.log, data.scenario, data.truth, data.relations, "
+    "data.time_offset";
+
+void apply_set(const std::string& assignment, Experiment& e, PathOrigins& origins,
+               std::vector<std::string>& notes) {
   const auto [key, value] = parse_key_value(assignment, "--set");
-  if (key.rfind("filter.", 0) == 0) {
-    try {
-      apply_localizer_override(key.substr(7), value, e.filter);
-    } catch (const ConfigError& err) {
-      throw UsageError("--set " + assignment + ": filter." + err.field() + ": " + err.message());
-    }
-    return;
-  }
   if (key == "init") {
     YAML::Node n;
     try {
-      n = YAML::Load(value);
+      n = YAML::Load(init_value(value));
       e.init = read_init("--set " + assignment, n, "init", 0);
     } catch (const YAML::Exception& ex) {
       throw UsageError("--set " + assignment + ": not valid YAML: " + ex.msg);
@@ -206,14 +220,29 @@ void apply_set(const std::string& assignment, Experiment& e, PathOrigins& origin
   }
   if (key == "data.truth") target = &e.truth;
   if (key == "data.relations") target = &e.relations;
-  if (target != nullptr && key != "name" && key != "out")
-    origins[key] = {0, value, "--set " + assignment};
-  if (target == nullptr) {
-    throw UsageError("--set " + assignment +
-                     ": unknown experiment key (filter.*, name, map, out, init, data.log, "
-                     "data.scenario, data.truth, data.relations, data.time_offset)");
+  if (target != nullptr) {
+    if (key != "name" && key != "out") origins[key] = {0, value, "--set " + assignment};
+    *target = value;
+    return;
   }
-  *target = value;
+  // Anything else is a filter key, with the same path as `pgmcl localize --set`.
+  try {
+    apply_localizer_override(key, value, e.filter);
+    return;
+  } catch (const ConfigError& err) {
+    // The old spelling: the filter key under the experiment's filter: block.
+    if (key.rfind("filter.", 0) == 0) {
+      try {
+        apply_localizer_override(key.substr(7), value, e.filter);
+        notes.push_back("--set " + assignment + ": the experiment's filter keys have the same " +
+                        "path as pgmcl localize's now: write --set " + key.substr(7) + "=" + value +
+                        " (the old filter." + key.substr(7) + " works for one release)");
+        return;
+      } catch (const ConfigError&) {
+      }
+    }
+    throw UsageError(std::string(err.what()) + "; experiment keys: " + kExperimentKeys);
+  }
 }
 
 }  // namespace
@@ -229,7 +258,7 @@ Experiment read_experiment(const std::string& path, const std::vector<std::strin
   } catch (const FormatError& err) {
     throw ConfigError(err.file(), err.line(), err.field(), err.message());
   }
-  for (const auto& s : sets) apply_set(s, e, origins);
+  for (const auto& s : sets) apply_set(s, e, origins, e.notes);
   check_inputs(e, origins);
   if (e.out.empty()) e.out = (fs::path("pgmcl-out") / e.name).string();
   return e;

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "pgmcl/io/values.hpp"
+
 namespace pgmcl::io::detail {
 
 namespace {
@@ -57,6 +59,36 @@ YAML::Node load_yaml_file(const std::string& path) {
     const std::size_t line = e.mark.is_null() ? 0 : static_cast<std::size_t>(e.mark.line) + 1;
     throw FormatError(path, line, "yaml", "not valid YAML: " + e.msg);
   }
+}
+
+void set_dotted(YAML::Node& doc, const std::string& key, const std::string& value) {
+  const std::string source = "--set " + key + "=" + value;
+  YAML::Node leaf;
+  try {
+    leaf = YAML::Load(value);
+  } catch (const YAML::Exception& e) {
+    throw UsageError(source + ": value is not valid YAML: " + e.msg);
+  }
+  std::vector<std::string> parts;
+  std::stringstream ss(key);
+  for (std::string part; std::getline(ss, part, '.');) {
+    if (part.empty()) throw UsageError(source + ": empty component in the dotted key");
+    parts.push_back(part);
+  }
+  if (parts.empty()) throw UsageError(source + ": empty key");
+  if (!doc || doc.IsNull()) doc = YAML::Node(YAML::NodeType::Map);
+  if (!doc.IsMap()) throw UsageError(source + ": the file is not a mapping of keys");
+  YAML::Node node = doc;
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    YAML::Node child = node[parts[i]];
+    if (!child || child.IsNull()) {
+      node[parts[i]] = YAML::Node(YAML::NodeType::Map);
+      child = node[parts[i]];
+    }
+    if (!child.IsMap()) throw UsageError(source + ": " + parts[i] + " is not a mapping");
+    node.reset(child);
+  }
+  node[parts.back()] = leaf;
 }
 
 YamlMap::YamlMap(std::string file, YAML::Node node, std::string path, std::size_t parent_line)

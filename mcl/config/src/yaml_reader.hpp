@@ -24,6 +24,12 @@ namespace pgmcl::io::detail {
 /// Parses a whole YAML document; syntax errors become FormatError(file, line, "yaml", ...).
 [[nodiscard]] YAML::Node load_yaml_file(const std::string& path);
 
+/// Sets the dotted `key` ("robot.start") of the mapping `doc` to `value` read as YAML,
+/// creating mappings on the way: a command line's `--set key=value`. Throws UsageError
+/// naming `--set key=value` for bad YAML, an empty key part, or a key part under a value
+/// that is not a mapping.
+void set_dotted(YAML::Node& doc, const std::string& key, const std::string& value);
+
 /// A mapping under construction. `path` is the dotted key of the mapping itself ("" for the
 /// document root); fields are reported as path + "." + key. Not copyable by design of use:
 /// create one per mapping, read its keys, call finish().

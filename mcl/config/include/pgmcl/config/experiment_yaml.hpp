@@ -51,14 +51,17 @@ struct Experiment {
   std::string relations;     ///< resolved path, may be empty
   double time_offset = 0.0;  ///< seconds
   ExperimentInit init{};
-  LocalizerConfig filter{};  ///< validated
-  std::string out;           ///< resolved output directory
+  LocalizerConfig filter{};        ///< validated
+  std::string out;                 ///< resolved output directory
+  std::vector<std::string> notes;  ///< deprecated spellings used in `sets`, for the caller
 };
 
-/// Reads an experiment. `sets` are "key=value" overrides applied after the file: keys under
-/// `filter.` go to the LocalizerConfig (apply_localizer_override), and name, map, out,
-/// init, data.log, data.scenario, data.truth, data.relations, data.time_offset replace
-/// those values (paths relative to the current directory, as typed on a command line).
+/// Reads an experiment. `sets` are "key=value" overrides applied after the file: name, map,
+/// out, init, data.log, data.scenario, data.truth, data.relations, data.time_offset replace
+/// those values (paths relative to the current directory, as typed on a command line; init
+/// also as "x,y,theta[,sx,sy,stheta]" like --init), and every other key is a filter key
+/// with the same path as `pgmcl localize --set` ("filter.particles=500"); the old
+/// "filter.filter.particles" still works and adds a line to Experiment::notes.
 /// Then every input path must exist and be of its kind. Throws ConfigError (file errors,
 /// missing inputs), UsageError (a bad --set, a missing input it named, a wrong kind of
 /// file), IoError (unreadable file).

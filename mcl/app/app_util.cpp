@@ -1,6 +1,7 @@
 #include "app_util.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -52,14 +53,27 @@ CLI::Validator file_kind(std::initializer_list<io::FileKind> accepted, std::stri
 }
 
 CLI::Validator length_in(const std::string& unit) {
-  const double per_m = unit == "mm" ? 1000.0 : 1.0;  // this unit's value of one metre
-  std::map<std::string, double> factors{
-      {"mm", per_m / 1000.0}, {"cm", per_m / 100.0}, {"m", per_m}};
-  CLI::Validator v = CLI::AsNumberWithUnit(
-      factors, static_cast<CLI::AsNumberWithUnit::Options>(CLI::AsNumberWithUnit::CASE_SENSITIVE |
-                                                           CLI::AsNumberWithUnit::UNIT_OPTIONAL));
-  v.description("");  // the option's help names its unit
-  return v;
+  return CLI::Validator(
+      [unit](std::string& text) -> std::string {
+        // The number, then an optional unit: "5", "5mm", "0.5 cm", "0.005m".
+        std::size_t end = text.size();
+        while (end > 0 && std::isalpha(static_cast<unsigned char>(text[end - 1]))) --end;
+        const std::string suffix = text.substr(end);
+        std::string number = text.substr(0, end);
+        while (!number.empty() && number.back() == ' ') number.pop_back();
+        double v = 0.0;
+        const double per_m = unit == "mm" ? 1000.0 : 1.0;  // this unit's value of a metre
+        const std::map<std::string, double> factors{
+            {"", 1.0}, {"mm", per_m / 1000.0}, {"cm", per_m / 100.0}, {"m", per_m}};
+        const auto f = factors.find(suffix);
+        if (f == factors.end() || !CLI::detail::lexical_cast(number, v) || !std::isfinite(v)) {
+          return "expected a length in " + unit + " or with a unit (5, 5mm, 0.5cm, 0.005m), got '" +
+                 text + "'";
+        }
+        text = io::format_number(v * f->second);
+        return {};
+      },
+      "", "length");
 }
 
 CLI::Validator map_file() {

@@ -154,10 +154,9 @@ std::string summary_line(const io::RunMetrics& m, const std::string& out_dir,
   if (kld.enabled && m.updates > 0 &&
       (m.particles_min != m.particles_max || m.particles_min != config.filter.particles)) {
     n = std::snprintf(buf, sizeof buf,
-                      " sized by KLD-sampling within filter.kld %zu..%zu (filter.particles %zu "
-                      "and filter.global_particles %zu are where it starts)",
-                      kld.min_particles, kld.max_particles, config.filter.particles,
-                      config.filter.global_particles);
+                      " set by KLD-sampling within %zu..%zu (filter.particles %zu is only the "
+                      "start)",
+                      kld.min_particles, kld.max_particles, config.filter.particles);
     s.append(buf, static_cast<std::size_t>(std::max(n, 0)));
   }
   n = std::snprintf(buf, sizeof buf, ", %.0f beams, fit %.2f, converged on %.0f %% of updates",

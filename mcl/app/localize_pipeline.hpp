@@ -49,7 +49,7 @@ io::RunMetrics run_localization(const LocalizeJob& job);
 [[nodiscard]] std::string run_title(const std::string& out_dir, const std::string& log);
 
 /// One line for the terminal: updates, timing (mean, median, p95, max), particle counts and
-/// whether KLD-sampling sized them, accuracy and lock-on.
+/// whether KLD-sampling set them, accuracy and lock-on.
 [[nodiscard]] std::string summary_line(const io::RunMetrics& m, const std::string& out_dir,
                                        const LocalizerConfig& config);
 

@@ -65,8 +65,8 @@ TEST(CliLocalize, TracksTheSyntheticRoomAndWritesEveryOutput) {
                        std::to_string(m["particles_max"].as<int>())),
             std::string::npos)
       << r.out;
-  EXPECT_NE(r.out.find("sized by KLD-sampling within filter.kld 100..20000 (filter.particles 300 "
-                       "and filter.global_particles 3000 are where it starts)"),
+  EXPECT_NE(r.out.find(") set by KLD-sampling within 100..20000 (filter.particles 300 is only the "
+                       "start)"),
             std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find(" ms/update (median "), std::string::npos) << r.out;

@@ -215,20 +215,26 @@ Canvas render_overlay(const maps::OccupancyGrid& grid, const OverlayData& data,
   Canvas canvas(width, header + 6 + body + 6, colors::kWhite);
   overlay::draw_header(&canvas, width, data.title, data.subtitle, legend, ts);
   const int mx = left, my = header + 6;
-  canvas.blit(frame.draw_map(), mx, my);
-  canvas.frame_rect(mx - 1, my - 1, mx + frame.width(), my + frame.height(), colors::kDarkGrey);
-
+  // The scene is drawn on the map's own canvas: a path that leaves the map (an estimate
+  // gone astray) is clipped at its edge instead of running over the header and margins.
+  Canvas map_canvas = frame.draw_map();
   overlay::View view;
-  view.to_pixel = [&frame, mx, my](double x, double y) {
-    const PixelPoint p = frame.to_pixel(x, y);
-    return PixelPoint{p.x + mx, p.y + my};
-  };
+  view.to_pixel = [&frame](double x, double y) { return frame.to_pixel(x, y); };
   view.angle_offset = grid.origin().theta;
   view.pixels_per_metre = frame.pixels_per_metre();
   view.line_width = std::clamp(frame.width() / 400.0, 1.0, 3.0);
   view.particle_radius = std::max(2.0, view.line_width);
   view.arrow_length = arrow_pixels(std::max(frame.width(), frame.height()));
-  overlay::draw_scene(canvas, view, data);
+  overlay::draw_scene(map_canvas, view, data);
+  if (zoom.zoom) {  // the zoomed window's outline on the whole map
+    const double half = zoom.metres / 2.0 * frame.pixels_per_metre();
+    const PixelPoint c = view.to_pixel(zoom.centre.x, zoom.centre.y);
+    map_canvas.frame_rect(static_cast<int>(c.x - half) - 2, static_cast<int>(c.y - half) - 2,
+                          static_cast<int>(c.x + half) + 2, static_cast<int>(c.y + half) + 2,
+                          colors::kBlue, 2);
+  }
+  canvas.blit(map_canvas, mx, my);
+  canvas.frame_rect(mx - 1, my - 1, mx + frame.width(), my + frame.height(), colors::kDarkGrey);
 
   if (rotated) {
     draw_axes_glyph(canvas, frame, mx + frame.width() - 70 * ts, my + frame.height() - 4, ts);
@@ -236,13 +242,7 @@ Canvas render_overlay(const maps::OccupancyGrid& grid, const OverlayData& data,
     draw_ticks(canvas, grid, frame, mx, my, ts);
   }
   OverlayLayout out{mx, my, false, 0, 0, 0, 0.0};
-  if (zoom.zoom) {
-    // The window's outline on the whole map, then the zoomed view beside it.
-    const double half = zoom.metres / 2.0 * frame.pixels_per_metre();
-    const PixelPoint c = view.to_pixel(zoom.centre.x, zoom.centre.y);
-    canvas.frame_rect(static_cast<int>(c.x - half) - 2, static_cast<int>(c.y - half) - 2,
-                      static_cast<int>(c.x + half) + 2, static_cast<int>(c.y + half) + 2,
-                      colors::kBlue, 2);
+  if (zoom.zoom) {  // the zoomed view beside the map
     const int zx = mx + frame.width() + 20, zy = my;
     canvas.blit(overlay::render_zoom(grid, data, zoom.centre, zoom.metres, zoom_side, ts), zx, zy);
     canvas.frame_rect(zx - 2, zy - 2, zx + zoom_side + 1, zy + zoom_side + 1, colors::kBlue, 2);

@@ -164,6 +164,23 @@ TEST(CliPictures, OverlayHeaderAndCoordinatesStayOffTheMap) {
   for (int y = 0; y < static_cast<int>(path_top.y); ++y)
     for (int x = 0; x < f.width(); ++x)
       ASSERT_EQ(c.at(x + lay.map_x, y + lay.map_y), colors::kWhite) << x << "," << y;
+  // An estimate that leaves the map is clipped at its edge: outside the map, only the
+  // legend's red swatch is red, as with an estimate inside it.
+  auto red_outside = [&](const Canvas& a) {
+    int n = 0;
+    for (int y = 0; y < a.height(); ++y)
+      for (int x = 0; x < a.width(); ++x) {
+        const bool inside = x >= lay.map_x && x < lay.map_x + f.width() && y >= lay.map_y &&
+                            y < lay.map_y + f.height();
+        n += !inside && a.at(x, y) == colors::kRed;
+      }
+    return n;
+  };
+  const int legend_red = red_outside(c);
+  EXPECT_GT(legend_red, 0);
+  std::vector<Pose2> astray{{0.5, 0.5, 0.0}, {40.0, 60.0, 0.0}, {-30.0, 0.4, 0.0}};
+  d.estimate = astray;
+  EXPECT_EQ(red_outside(render_overlay(g, d, &lay)), legend_red);
   // Tick labels in the left and bottom margins.
   int margin_ink = 0;
   for (int y = lay.map_y; y < lay.map_y + f.height(); ++y)

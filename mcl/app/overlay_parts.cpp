@@ -96,12 +96,14 @@ void draw_scene(Canvas& canvas, const View& view, const OverlayData& data) {
   // Truth wider underneath, so it shows on both sides of an estimate that follows it.
   draw_path(canvas, view, data.truth, 0, data.truth.size(), colors::kGreen, w + 2.0);
   const std::size_t n = data.estimate.size();
-  const std::size_t s0 = std::min(data.search_begin, n), s1 = std::min(data.search_end, n);
-  draw_path(canvas, view, data.estimate, 0, std::min(s0 + 1, n), colors::kRed, w);
-  if (s1 > s0) {
-    draw_path(canvas, view, data.estimate, s0, std::min(s1 + 1, n), kPaleRed, 1.0);
-  }
-  draw_path(canvas, view, data.estimate, std::max(s0, s1), n, colors::kRed, w);
+  const std::size_t s0 = std::min(data.search_begin, n),
+                    s1 = std::max(s0, std::min(data.search_end, n));
+  // draw_path(from, to) draws the steps into poses from..to-1: the steps into the search's
+  // poses and into the lock-on pose s1 (the jump to the right place) are pale, the rest red.
+  if (s0 > 0 || s1 == s0)
+    draw_path(canvas, view, data.estimate, 0, std::min(s0 + 1, n), colors::kRed, w);
+  if (s1 > s0) draw_path(canvas, view, data.estimate, s0 + 1, std::min(s1 + 1, n), kPaleRed, 1.0);
+  draw_path(canvas, view, data.estimate, s1 + 1, n, colors::kRed, w);
   const std::span<const Pose2> first = !data.truth.empty() ? data.truth : data.estimate;
   if (!first.empty()) {
     const PixelPoint s = view.to_pixel(first.front().x, first.front().y);

@@ -54,7 +54,8 @@ std::vector<overlay::LegendEntry> legend_of(const OverlayData& data, bool has_ju
   if (!data.estimate.empty()) l.push_back({E::Swatch::kLine, colors::kRed, "estimate"});
   if (data.search_end > data.search_begin)
     l.push_back({E::Swatch::kLine, overlay::kPaleRed, "estimate before lock-on"});
-  if (has_jumps) l.push_back({E::Swatch::kDotted, colors::kBlack, "jump (kidnap, re-localised)"});
+  if (has_jumps)
+    l.push_back({E::Swatch::kDotted, colors::kBlack, "jump (kidnap or re-localisation)"});
   if (!data.truth.empty() || !data.estimate.empty()) {
     l.push_back({E::Swatch::kStart, colors::kBlack, "start"});
     l.push_back({E::Swatch::kArrow, colors::kDarkGrey, "end and heading"});

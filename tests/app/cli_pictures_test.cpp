@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli_test_util.hpp"
+#include "overlay_parts.hpp"
 #include "pgmcl/io/errors.hpp"
 #include "plot.hpp"
 #include "png.hpp"
@@ -270,6 +271,31 @@ TEST(CliPictures, OverlayBreaksPathsAtJumpsAndDrawsObstacles) {
   for (int y = lay.map_y; y < c.height(); ++y)
     for (int x = 0; x < c.width(); ++x) purple += c.at(x, y) == colors::kPurple;
   EXPECT_GT(purple, 30);
+}
+
+TEST(CliPictures, OverlayDrawsTheSearchAndItsJumpToLockOnPale) {
+  // A global start: three poses of a search far from the track, then the jump to the right
+  // place at lock-on (pose 3) and the settled path.
+  std::vector<Pose2> est{{8.0, 8.0, 0.0}, {8.1, 8.0, 0.0}, {8.2, 8.0, 0.0}};
+  for (int i = 0; i < 20; ++i) est.push_back({1.0 + 0.1 * i, 1.0, 0.0});
+  maps::OccupancyGrid g(200, 200, 0.05, Pose2{}, maps::kFree);
+  OverlayData d;
+  d.estimate = est;
+  d.search_begin = 0;
+  d.search_end = 3;
+  OverlayLayout lay;
+  const Canvas c = render_overlay(g, d, &lay);
+  const MapFrame f(g);
+  auto around = [&](double x, double y, Rgb colour) {
+    const PixelPoint p = f.to_pixel(x, y);
+    return count_colour(
+        c, colour, static_cast<int>(p.x) + lay.map_x - 3, static_cast<int>(p.y) + lay.map_y - 3,
+        static_cast<int>(p.x) + lay.map_x + 3, static_cast<int>(p.y) + lay.map_y + 3);
+  };
+  EXPECT_GT(around(2.0, 1.0, colors::kRed), 0);  // the settled path
+  EXPECT_EQ(around(8.1, 8.0, colors::kRed), 0);  // the search, its first pose included
+  EXPECT_GT(around(8.1, 8.0, overlay::kPaleRed), 0);
+  EXPECT_EQ(around(4.6, 4.5, colors::kRed), 0);  // midway along the jump to lock-on
 }
 
 TEST(CliPictures, NiceTicksAreOneTwoFiveStepsCoveringTheRange) {

@@ -198,14 +198,31 @@ Canvas render_line_plot(const LinePlot& plot) {
     }
     flush();
   }
-  // Event markers over the data, labels at the top, kept inside the plot.
+  // Data points inside a label's box: a label goes where it hides the fewest.
+  auto points_in = [&](int bx0, int by0, int bx1, int by1) {
+    int n = 0;
+    for (const auto& s : plot.series)
+      for (std::size_t i = 0; i < s.x.size(); ++i) {
+        if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i]) || s.x[i] < x0 || s.x[i] > x1)
+          continue;
+        const double qx = px(s.x[i]), qy = std::clamp(py(s.y[i]), 1.0 * top, 1.0 * bottom);
+        n += qx >= bx0 && qx <= bx1 && qy >= by0 && qy <= by1 ? 1 : 0;
+      }
+    return n;
+  };
+  // Event markers over the data, labels inside the plot at its bottom, or below the span
+  // labels at its top when the data runs along the bottom there.
   for (const PlotMarker& m : plot.markers) {
     const double x = px(m.x);
     if (x < left - 0.5 || x > right + 0.5) continue;
     canvas.line({x, 1.0 * top}, {x, 1.0 * bottom}, m.colour, 2.0);
     const int w = Canvas::text_width(m.label, ts);
     const int tx = x + 6 + w <= right ? static_cast<int>(x) + 6 : static_cast<int>(x) - 6 - w;
-    const int ty = bottom - th - 6;
+    const int low = bottom - th - 6, high = top + th + 12;
+    const int ty = points_in(tx - 2, low - 2, tx + w + 1, low + th + 1) >
+                           points_in(tx - 2, high - 2, tx + w + 1, high + th + 1)
+                       ? high
+                       : low;
     canvas.fill_rect(tx - 2, ty - 2, tx + w + 1, ty + th + 1, colors::kWhite);
     canvas.text(tx, ty, m.label, m.colour, ts);
   }

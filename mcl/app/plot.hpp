@@ -20,7 +20,7 @@ struct PlotSeries {
   Rgb colour = colors::kBlue;
 };
 
-/// A vertical line at `x` with a label at its top (an event: lock-on, a kidnap).
+/// A vertical line at `x` with a label beside it (an event: lock-on, a kidnap).
 struct PlotMarker {
   double x = 0.0;
   std::string label;

@@ -341,6 +341,18 @@ TEST(CliPictures, LinePlotPutsDataWhereTheAxesSay) {
   EXPECT_EQ(c.at((xmin + xmax) / 2, (ymin + ymax) / 2), colors::kRed);
   // (0, 0) is bottom-left: the lowest red pixel is at the left end.
   EXPECT_TRUE(c.at(xmin + 1, ymax - 1) == colors::kRed || c.at(xmin + 1, ymax) == colors::kRed);
+  // A marker's label does not hide data running along the bottom after it (lock-on, then a
+  // small error): only the marker's own line crosses the data.
+  PlotSeries low{"", {}, {}, colors::kRed};
+  for (int i = 0; i <= 1000; ++i) {
+    low.x.push_back(0.01 * i);
+    low.y.push_back(i < 500 ? 1.0 : 0.03);
+  }
+  p.series = {low};
+  const int unmarked = count_colour(render_line_plot(p), colors::kRed);
+  p.markers = {{6.0, "locked on at 6.0 s", colors::kBlack}};
+  const int marked = count_colour(render_line_plot(p), colors::kRed);
+  EXPECT_LT(unmarked - marked, 20) << unmarked << " " << marked;
   PlotSeries bad{"bad", {1.0}, {}, colors::kRed};
   p.series = {bad};
   EXPECT_THROW((void)render_line_plot(p), std::invalid_argument);

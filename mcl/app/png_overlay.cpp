@@ -76,7 +76,9 @@ void draw_ticks(Canvas& canvas, const maps::OccupancyGrid& grid, const MapFrame&
   const double ox = grid.origin().x, oy = grid.origin().y;
   const int th = Canvas::text_height("0", ts);
   const int bottom = my + frame.height();
-  const std::vector<double> xt = nice_ticks(ox, ox + grid.width() * res, 8);
+  // As many ticks as fit with room between their labels (a thin map gets two or three).
+  const int xfit = frame.width() / (Canvas::text_width("-000.0 m", ts) + 8);
+  const std::vector<double> xt = nice_ticks(ox, ox + grid.width() * res, std::clamp(xfit, 2, 8));
   const double xstep = xt.size() > 1 ? xt[1] - xt[0] : 1.0;
   for (std::size_t i = 0; i < xt.size(); ++i) {
     const double px = mx + (xt[i] - ox) / res * s;
@@ -89,7 +91,8 @@ void draw_ticks(Canvas& canvas, const maps::OccupancyGrid& grid, const MapFrame&
     canvas.text(std::clamp(x - w / 2, 0, canvas.width() - w), bottom + 7, label, colors::kBlack,
                 ts);
   }
-  const std::vector<double> yt = nice_ticks(oy, oy + grid.height() * res, 8);
+  const int yfit = frame.height() / th + 1;
+  const std::vector<double> yt = nice_ticks(oy, oy + grid.height() * res, std::clamp(yfit, 2, 8));
   const double ystep = yt.size() > 1 ? yt[1] - yt[0] : 1.0;
   for (std::size_t i = 0; i < yt.size(); ++i) {
     const double py = bottom - (yt[i] - oy) / res * s;

@@ -189,6 +189,36 @@ TEST(CliPictures, OverlayHeaderAndCoordinatesStayOffTheMap) {
   EXPECT_GT(margin_ink, 20);
 }
 
+TEST(CliPictures, OverlayTickLabelsOnAThinMapDoNotTouch) {
+  // A 40 x 4 m corridor: its y labels, one text line each, with blank rows between them.
+  maps::OccupancyGrid g(800, 80, 0.05, Pose2{0.0, -1.0, 0.0}, maps::kFree);
+  OverlayLayout lay;
+  const Canvas c = render_overlay(g, OverlayData{}, &lay);
+  const MapFrame f(g);
+  auto row_has_ink = [](const Canvas& a, int x0, int x1, int y) {
+    for (int x = x0; x < x1; ++x)
+      if (a.at(x, y) == colors::kBlack) return true;
+    return false;
+  };
+  Canvas probe(200, 60, colors::kWhite);
+  probe.text(0, 0, "-0.5 m", colors::kBlack, 2);
+  int label_rows = 0;
+  for (int y = 0; y < probe.height(); ++y) label_rows += row_has_ink(probe, 0, probe.width(), y);
+  std::vector<int> runs;  // heights of the runs of rows with ink in the left margin
+  int run = 0;
+  for (int y = lay.map_y; y < lay.map_y + f.height() + label_rows; ++y) {
+    if (row_has_ink(c, 0, lay.map_x - 6, y)) {
+      ++run;
+    } else if (run > 0) {
+      runs.push_back(run);
+      run = 0;
+    }
+  }
+  if (run > 0) runs.push_back(run);
+  ASSERT_GE(runs.size(), 2u);
+  for (const int h : runs) EXPECT_LE(h, label_rows);
+}
+
 TEST(CliPictures, OverlayZoomsOnASmallFinalCloudOnly) {
   maps::OccupancyGrid g(800, 800, 0.05, Pose2{}, maps::kFree);  // 40 m
   std::vector<Pose2> est{{5.0, 5.0, 0.0}, {20.0, 20.0, 0.5}};

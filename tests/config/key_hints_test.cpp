@@ -81,6 +81,14 @@ TEST(KeyHints, AmclNamesNameThePgmclKeyOrWhyThereIsNone) {
             std::string::npos)
       << m;
   EXPECT_NE(set_error("z_short").find("has no pgmcl key"), std::string::npos);
+  // A nav2 parameters file given whole.
+  for (const std::string k : {"amcl.ros__parameters.alpha1", "ros__parameters.alpha1"}) {
+    EXPECT_NE(set_error(k).find("unknown key: this looks like a ROS amcl parameters file "
+                                "(amcl: ros__parameters: ...); pgmcl's keys have other names "
+                                "and places: `pgmcl config --amcl`"),
+              std::string::npos)
+        << set_error(k);
+  }
 }
 
 TEST(KeyHints, EveryKeyInTheAmclTableExists) {

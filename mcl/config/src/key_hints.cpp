@@ -158,6 +158,11 @@ std::vector<std::string> localizer_config_keys() {
 
 std::string localizer_key_hint(const std::string& field, const std::string& prefix) {
   const std::string_view name = last_component(field);
+  if (name == "amcl" || name == "ros__parameters") {  // a whole ROS parameters file
+    return "this looks like a ROS amcl parameters file (amcl: ros__parameters: ...); pgmcl's "
+           "keys have other names and places: `pgmcl config --amcl` gives the pgmcl key of each "
+           "AMCL parameter";
+  }
   if (const AmclParameter* p = find_amcl(name)) {
     if (*p->pgmcl == '\0') return "AMCL's " + std::string(name) + " has no pgmcl key: " + p->note;
     std::string keys = p->pgmcl;

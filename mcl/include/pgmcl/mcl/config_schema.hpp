@@ -298,6 +298,8 @@ void describe_hypotheses(V& v, Config& c) {
              h.separation_xy, kPositive);
     v.number(Field{"separation_theta", "rad", "closer headings are the same place"},
              h.separation_theta, kPositive);
+    v.flag(Field{"free_space", "", "judge hypotheses also by rays that cross walls"},
+           h.free_space);
   });
 }
 

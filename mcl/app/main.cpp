@@ -1,5 +1,6 @@
 /// pgmcl: the command-line front end. Every failure ends as one "pgmcl: error: ..." line on
-/// stderr and a non-zero exit code (2 usage, 1 input/runtime, 3 not available yet).
+/// stderr and a non-zero exit code (2 usage, 1 input/runtime, 130/143 stopped by
+/// SIGINT/SIGTERM: cli_errors.hpp, interrupt.hpp).
 
 #include <CLI/CLI.hpp>
 #include <iostream>
@@ -8,9 +9,11 @@
 
 #include "cli_errors.hpp"
 #include "commands.hpp"
+#include "interrupt.hpp"
 #include "pgmcl/io/values.hpp"
 
 int main(int argc, char** argv) {
+  pgmcl::app::install_interrupt_handlers();
   CLI::App app{
       "pgmcl: Monte Carlo localisation with the planar Gaussian beam model "
       "(Dekan et al.)",

@@ -19,6 +19,24 @@ std::string num(double v) {
   return buf;
 }
 
+/// A double-quoted YAML scalar: any text, including ": " and "#", reads back as itself.
+std::string yaml_quoted(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", static_cast<unsigned char>(c));
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
 /// Rows of (key, value text, unit) shared by the YAML and the table.
 std::vector<std::pair<std::string, std::string>> rows(const RunMetrics& m, bool run_figures) {
   std::vector<std::pair<std::string, std::string>> r;
@@ -35,6 +53,8 @@ std::vector<std::pair<std::string, std::string>> rows(const RunMetrics& m, bool 
         {"beams_used_mean", num(m.beams_used_mean)},
         {"fit_mean", num(m.fit_mean)},
         {"converged_fraction", num(m.converged_fraction)},
+        {"complete", m.complete ? "true" : "false"},
+        {"warning_count", std::to_string(m.warnings.size())},
     };
   }
   if (m.accuracy) {
@@ -134,6 +154,10 @@ double percentile(std::vector<double> values, double p) {
 std::string metrics_yaml(const RunMetrics& m, bool run_figures) {
   std::string out = "# pgmcl run metrics\n";
   for (const auto& [key, value] : rows(m, run_figures)) out += key + ": " + value + "\n";
+  if (run_figures && !m.warnings.empty()) {
+    out += "warnings:\n";
+    for (const std::string& w : m.warnings) out += "  - " + yaml_quoted(w) + "\n";
+  }
   return out;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <numbers>
@@ -51,6 +52,42 @@ std::string start_filter(Localizer& loc, const ReplayJob& job, double first_stam
     warnings.emplace_back(buf);
   }
   return "global localisation";
+}
+
+/// Faster than any robot these logs come from: a step that implies more is a glitch.
+constexpr double kMaxSpeed = 10.0;  ///< m/s
+constexpr double kMinJump = 1.0;    ///< metres: shorter steps are never called jumps
+/// Below this mean fit (UpdateResult::fit) the scans never matched the map.
+constexpr double kLowFit = 0.05;
+
+/// Counts odometry steps between consecutive updates that no robot drives.
+struct JumpCounter {
+  std::size_t count = 0;
+  double largest = 0.0, largest_dt = 0.0;
+  std::size_t largest_line = 0;
+  std::optional<io::StampedPose> last;
+
+  void add(const Pose2& odom, double stamp, std::size_t line) {
+    if (last) {
+      const double d = std::hypot(odom.x - last->pose.x, odom.y - last->pose.y);
+      const double dt = stamp - last->stamp;
+      if (d > kMinJump && d > kMaxSpeed * dt) {
+        ++count;
+        if (d > largest) {
+          largest = d;
+          largest_dt = dt;
+          largest_line = line;
+        }
+      }
+    }
+    last = io::StampedPose{stamp, odom};
+  }
+};
+
+std::string g(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", v);
+  return buf;
 }
 
 /// Updates that reported `converged` while more than 1 m off (AteOptions::lost_translation).
@@ -125,6 +162,7 @@ ReplayResult run(const ReplayJob& job, const ReplayHooks& hooks) {
   out.rows.reserve(usable);
   out.trajectory.reserve(usable);
   std::size_t done = 0, out_of_order = 0, unpaired = 0;
+  JumpCounter jumps;
   double last_stamp = -std::numeric_limits<double>::infinity();
   for (const io::PairedScan& p : paired.scans) {
     if (hooks.stop != nullptr && hooks.stop->load(std::memory_order_relaxed)) {
@@ -141,6 +179,7 @@ ReplayResult run(const ReplayJob& job, const ReplayHooks& hooks) {
       continue;
     }
     last_stamp = s.stamp;
+    jumps.add(p.odom, s.stamp, s.line);
     UpdateResult r;
     try {
       r = loc.update(p.odom, s.scan, s.stamp);
@@ -161,6 +200,30 @@ ReplayResult run(const ReplayJob& job, const ReplayHooks& hooks) {
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   out.metrics = acc.summarise(wall_s);
+  out.metrics.complete = out.complete;
+  if (paired.report.shared_stamps > 0) {
+    out.warnings.push_back(
+        job.log_name + ": " + std::to_string(paired.report.shared_stamps) +
+        " scan(s) share their timestamp with other scans or with several ODOM messages (first "
+        "on line " +
+        std::to_string(paired.report.first_shared_line) +
+        "), so time cannot order them; each was paired with the ODOM message before it in "
+        "the file");
+  }
+  if (jumps.count > 0) {
+    out.warnings.push_back(
+        job.log_name + ": " + std::to_string(jumps.count) + " odometry jump(s) faster than " +
+        g(kMaxSpeed) + " m/s between consecutive scans (largest " + g(jumps.largest) + " m in " +
+        g(jumps.largest_dt) + " s, before line " + std::to_string(jumps.largest_line) +
+        "); the filter moves its particles by them and is likely lost there");
+  }
+  if (out.metrics.updates >= 10 && out.metrics.fit_mean < kLowFit) {
+    out.warnings.push_back(
+        "the scans never matched the map: mean fit " + g(out.metrics.fit_mean) + " over " +
+        std::to_string(out.metrics.updates) +
+        " updates (the fraction of beams ending near a mapped wall); the estimate is "
+        "meaningless. Check the map's resolution, origin and mode, and the start pose");
+  }
   if (out_of_order > 0) {
     out.warnings.push_back(job.log_name + ": skipped " + std::to_string(out_of_order) +
                            " scan(s) stamped before the previous one");
@@ -170,16 +233,39 @@ ReplayResult run(const ReplayJob& job, const ReplayHooks& hooks) {
                            " scan(s) without odometry");
   }
 
+  // Figures over nothing would read as a perfect 0: say so and leave them out instead.
   if (job.truth && !out.trajectory.empty()) {
-    out.ate = io::evaluate_ate(out.trajectory, *job.truth);
-    out.metrics.accuracy = io::accuracy_metrics(*out.ate);
-    count_false_convergence(out.rows, *out.ate, *out.metrics.accuracy);
+    io::AteResult ate = io::evaluate_ate(out.trajectory, *job.truth);
+    if (ate.matched == 0) {
+      out.warnings.push_back("the ground truth matched none of the " +
+                             std::to_string(out.trajectory.size()) +
+                             " estimated poses in time (a different log, or another clock?); "
+                             "no accuracy figures");
+    } else {
+      if (ate.matched < out.trajectory.size()) {
+        out.warnings.push_back("the ground truth covers " + std::to_string(ate.matched) +
+                               " of the " + std::to_string(out.trajectory.size()) +
+                               " estimated poses; the accuracy figures are over those only");
+      }
+      out.ate = std::move(ate);
+      out.metrics.accuracy = io::accuracy_metrics(*out.ate);
+      count_false_convergence(out.rows, *out.ate, *out.metrics.accuracy);
+    }
   }
   if (job.relations && !out.trajectory.empty()) {
     io::RelationOptions ro;
     ro.time_offset = job.relations_time_offset;
-    out.metrics.relations =
-        io::relations_metrics(io::evaluate_relations(out.trajectory, *job.relations, ro));
+    const io::RelationResult rel = io::evaluate_relations(out.trajectory, *job.relations, ro);
+    if (rel.matched == 0) {
+      char offset[64];
+      std::snprintf(offset, sizeof offset, "%.3f", io::kIntelRelationsTimeOffset);
+      out.warnings.push_back("none of the " + std::to_string(rel.relations) +
+                             " relations matched the estimate's stamps (does the log need a "
+                             "time offset? intel: " +
+                             offset + " s); no relations figures");
+    } else {
+      out.metrics.relations = io::relations_metrics(rel);
+    }
   }
   const ParticlesView pv = loc.particles();
   out.particles.reserve(pv.size());

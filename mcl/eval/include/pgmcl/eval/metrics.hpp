@@ -57,6 +57,10 @@ struct RunMetrics {
   double beams_used_mean = 0.0;     ///< over performed updates
   double fit_mean = 0.0;            ///< UpdateResult::fit over performed updates
   double converged_fraction = 0.0;  ///< of performed updates that reported `converged`
+  /// false: the run was stopped (SIGINT, SIGTERM) and these figures cover its first part.
+  bool complete = true;
+  /// What was reported as a warning during the run (skipped scans, doubtful inputs).
+  std::vector<std::string> warnings;
   std::optional<AccuracyMetrics> accuracy;
   std::optional<RelationsMetrics> relations;
 };
@@ -93,8 +97,9 @@ class MetricsAccumulator {
 /// The YAML text of metrics.yaml (keys as in RunMetrics; accuracy and relations keys:
 /// ate_rmse_m, ate_max_m, heading_rmse_deg, converged_after_s (null if never), truth_matched,
 /// relations_trans_m, relations_rot_deg, relations_trans_std_m, relations_rot_std_deg,
-/// relations_used). `run_figures` false leaves out the
-/// filter's own figures (updates .. beams_used_mean), for evaluating a trajectory file.
+/// relations_used; `complete` and, when there are any, the `warnings` list). `run_figures`
+/// false leaves out the filter's own figures (updates .. beams_used_mean, complete,
+/// warnings), for evaluating a trajectory file.
 [[nodiscard]] std::string metrics_yaml(const RunMetrics& m, bool run_figures = true);
 /// Writes metrics_yaml(m, run_figures) to `path`; throws IoError on failure.
 void write_metrics_yaml(const std::string& path, const RunMetrics& m, bool run_figures = true);

@@ -175,6 +175,9 @@ struct CarmenReadOptions {
   bool override_sensor_pose = false;
   Pose2 sensor_pose{};
   std::size_t max_issues = 1000;  ///< issue details kept per category
+  /// Bytes the records may take in memory; a larger log is a FormatError at the line that
+  /// crosses it (a gzip bomb of valid lines, or a log to split), strict or not.
+  std::size_t max_bytes = std::size_t{4} << 30;
 };
 
 /// Reads a CARMEN log (plain or .gz). Throws IoError if unreadable; FormatError in strict mode.

@@ -8,6 +8,12 @@
 /// of the kept ODOM messages (or in a gap wider than max_gap) falls back to the odometry pose
 /// the scan carries itself (FLASER odom_*, ROBOTLASER1 robot_pose_*); RAWLASERn scans carry
 /// none and stay unpaired. Both cases are counted.
+///
+/// Time cannot order messages that share a stamp (ODOM and scans logged at one time, stamps
+/// rounded to whole seconds): interpolation would give every scan of such a group the last
+/// odometry of the group. A scan whose stamp is held by two or more ODOM messages, or by
+/// another scan of its type, is therefore paired by file order instead: with the last ODOM
+/// message before it in the file. Those scans are counted (PairingReport::shared_stamps).
 
 #include <cstddef>
 #include <limits>
@@ -32,10 +38,12 @@ struct PairedScan {
 
 struct PairingReport {
   std::size_t interpolated = 0;
-  std::size_t scan_fields = 0;   ///< fallbacks to the scan's own odometry fields
-  std::size_t unpaired = 0;      ///< kNone
-  std::size_t odom_used = 0;     ///< ODOM messages in the interpolation
-  std::size_t odom_dropped = 0;  ///< ODOM messages dropped for going back in time
+  std::size_t scan_fields = 0;        ///< fallbacks to the scan's own odometry fields
+  std::size_t unpaired = 0;           ///< kNone
+  std::size_t odom_used = 0;          ///< ODOM messages in the interpolation
+  std::size_t odom_dropped = 0;       ///< ODOM messages dropped for going back in time
+  std::size_t shared_stamps = 0;      ///< scans paired by file order (stamp shared, above)
+  std::size_t first_shared_line = 0;  ///< the first of them, 0 if none
 };
 
 struct PairingOptions {

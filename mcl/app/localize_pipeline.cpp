@@ -121,7 +121,9 @@ void warn(LocalizeJob& job, const std::string& w) {
 }
 
 void check_job(LocalizeJob& job, const std::string& map_name, const std::string& what) {
-  check_map_for_localisation(*job.map, map_name, job.config);
+  for (const std::string& w : check_map_for_localisation(*job.map, map_name, job.config)) {
+    warn(job, w);
+  }
   if (job.init.kind == InitialBelief::Kind::kPose) {
     if (const std::string w = heading_warning(job.init.pose.theta, what); !w.empty()) warn(job, w);
   }

@@ -41,8 +41,9 @@ std::string extent_text(const maps::OccupancyGrid& m) {
 
 }  // namespace
 
-void check_map_for_localisation(const maps::OccupancyGrid& map, const std::string& map_name,
-                                const LocalizerConfig& config) {
+std::vector<std::string> check_map_for_localisation(const maps::OccupancyGrid& map,
+                                                    const std::string& map_name,
+                                                    const LocalizerConfig& config) {
   std::size_t occupied = 0, free = 0;
   for (const std::int8_t v : map.cells()) {
     occupied += v >= map.occupied_threshold() ? 1 : 0;
@@ -90,6 +91,13 @@ void check_map_for_localisation(const maps::OccupancyGrid& map, const std::strin
         " at " + g(res) + " m per cell; lower " + culprit.substr(0, culprit.find(' ')) +
         " or reach_sigmas, or use a coarser map");
   }
+  std::vector<std::string> warnings;
+  if (occupied > free) {
+    warnings.push_back(map_name + ": more occupied (" + std::to_string(occupied) + ") than free (" +
+                       std::to_string(free) +
+                       ") cells; a map of a building is mostly free space: is `negate` right?");
+  }
+  return warnings;
 }
 
 std::string heading_warning(double theta, const std::string& what) {

@@ -15,9 +15,11 @@ namespace pgmcl::app {
 /// Refuses (maps::MapError naming `map_name` and the field) a map the filter cannot match
 /// scans against: no occupied cell, cells so coarse that a beam of
 /// likelihood.beam.max_range spans fewer than 4 of them, or a likelihood kernel too wide
-/// for the table (naming the config field that makes it so).
-void check_map_for_localisation(const maps::OccupancyGrid& map, const std::string& map_name,
-                                const LocalizerConfig& config);
+/// for the table (naming the config field that makes it so). Returns a warning for a map
+/// with more occupied than free cells (an inverted image: `negate`).
+[[nodiscard]] std::vector<std::string> check_map_for_localisation(const maps::OccupancyGrid& map,
+                                                                  const std::string& map_name,
+                                                                  const LocalizerConfig& config);
 
 /// Refuses (io::UsageError naming `what`, "--init" or "FILE: init") a start pose outside the
 /// map or standard deviations past the map's size (a start that wide is --global) or 2π;

@@ -54,11 +54,15 @@ std::string start_filter(Localizer& loc, const ReplayJob& job, double first_stam
   return "global localisation";
 }
 
-/// Faster than any robot these logs come from: a step that implies more is a glitch.
-constexpr double kMaxSpeed = 10.0;  ///< m/s
-constexpr double kMinJump = 1.0;    ///< metres: shorter steps are never called jumps
-/// Below this mean fit (UpdateResult::fit) the scans never matched the map.
-constexpr double kLowFit = 0.05;
+/// Faster than any robot these logs come from: a step that implies more is a glitch. Stamps
+/// can be coarse (whole seconds) or shared, so a step is timed over at least kMinJumpTime.
+constexpr double kMaxSpeed = 10.0;    ///< m/s
+constexpr double kMinJumpTime = 1.0;  ///< seconds
+/// Below this mean fit (UpdateResult::fit) the scans hardly matched the map; a tracked run
+/// on a right map scores 0.9 and more.
+constexpr double kLowFit = 0.25;
+/// Updates after which a filter that never once converged is worth a warning.
+constexpr std::size_t kConvergenceUpdates = 50;
 
 /// Counts odometry steps between consecutive updates that no robot drives.
 struct JumpCounter {
@@ -71,7 +75,7 @@ struct JumpCounter {
     if (last) {
       const double d = std::hypot(odom.x - last->pose.x, odom.y - last->pose.y);
       const double dt = stamp - last->stamp;
-      if (d > kMinJump && d > kMaxSpeed * dt) {
+      if (d > kMaxSpeed * std::max(dt, kMinJumpTime)) {
         ++count;
         if (d > largest) {
           largest = d;
@@ -148,9 +152,18 @@ ReplayResult run(const ReplayJob& job, const ReplayHooks& hooks) {
     if (usable++ == 0) first_stamp = log.scans[p.scan_index].stamp;
   }
   if (usable == 0) {
+    std::string why;
+    if (!log.report.malformed_lines.empty()) {
+      // Every scan may have been dropped as malformed: that, not the log's layout, is the news.
+      const io::LineIssue& i = log.report.malformed_lines.front();
+      why = "; " + std::to_string(log.report.malformed) +
+            " malformed line(s) were dropped, the first " + job.log_name + ":" +
+            std::to_string(i.line) + ": " + i.message_type + " " + i.field + ": " + i.message;
+    }
     throw io::UsageError(job.log_name +
                          ": no laser scan with odometry (need ODOM messages or FLASER/"
-                         "ROBOTLASER1 scans, which carry their odometry pose)");
+                         "ROBOTLASER1 scans, which carry their odometry pose)" +
+                         why);
   }
 
   Localizer loc(*job.map, job.config);
@@ -207,8 +220,15 @@ ReplayResult run(const ReplayJob& job, const ReplayHooks& hooks) {
         " scan(s) share their timestamp with other scans or with several ODOM messages (first "
         "on line " +
         std::to_string(paired.report.first_shared_line) +
-        "), so time cannot order them; each was paired with the ODOM message before it in "
-        "the file");
+        "), so time cannot order this log: " + std::to_string(paired.report.by_file_order) +
+        " scan(s) were paired with the ODOM message before them in the file");
+  }
+  if (paired.report.odom_repeated_stamps > 0) {
+    out.warnings.push_back(
+        job.log_name + ": " + std::to_string(paired.report.odom_repeated_stamps) +
+        " ODOM message(s) carry the same stamp as the one before (first on line " +
+        std::to_string(paired.report.first_repeated_odom_line) +
+        "): rounded stamps? Scans between them get the later one's odometry");
   }
   if (jumps.count > 0) {
     out.warnings.push_back(
@@ -219,10 +239,15 @@ ReplayResult run(const ReplayJob& job, const ReplayHooks& hooks) {
   }
   if (out.metrics.updates >= 10 && out.metrics.fit_mean < kLowFit) {
     out.warnings.push_back(
-        "the scans never matched the map: mean fit " + g(out.metrics.fit_mean) + " over " +
+        "the scans hardly matched the map: mean fit " + g(out.metrics.fit_mean) + " over " +
         std::to_string(out.metrics.updates) +
-        " updates (the fraction of beams ending near a mapped wall); the estimate is "
-        "meaningless. Check the map's resolution, origin and mode, and the start pose");
+        " updates (the fraction of beams ending near a mapped wall; 0.9 and more when "
+        "tracking on the right map), so the estimate means little. Check the map (the right "
+        "one? resolution, origin, mode, negate) and the start pose");
+  } else if (out.metrics.updates >= kConvergenceUpdates && out.metrics.converged_fraction == 0.0) {
+    out.warnings.push_back("the filter never converged in " + std::to_string(out.metrics.updates) +
+                           " updates, so the estimate is a guess. Check the map (negate?) and "
+                           "the start pose");
   }
   if (out_of_order > 0) {
     out.warnings.push_back(job.log_name + ": skipped " + std::to_string(out_of_order) +

@@ -60,11 +60,15 @@ inline constexpr Bounds kLowerUnit{0.0, 1.0, false, true};  ///< [0, 1)
 struct IntRange {
   std::int64_t lo = 0;
   std::uint64_t hi = std::numeric_limits<std::uint64_t>::max();
+  double unit_bytes = 0.0;  ///< memory one unit costs, for the message (0: not a size)
   [[nodiscard]] std::string text() const;
+  /// " (about 110 bytes each: 1e+12 would take 110 TB)" for a size, else "".
+  [[nodiscard]] std::string memory(std::uint64_t v) const;
 };
 
-/// Particle counts: 10^7 particles hold about 1 GB of particles and scratch.
-inline constexpr IntRange kParticleCount{1, 10'000'000};
+/// Particle counts: the particle set and the filter's scratch take about 110 bytes per
+/// particle (tests/stress, MillionParticles), so 10^7 particles hold about 1 GB.
+inline constexpr IntRange kParticleCount{1, 10'000'000, 110.0};
 
 /// OpenMP threads: libgomp crashes creating tens of thousands, and past the core count more
 /// threads only take turns.

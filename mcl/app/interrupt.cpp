@@ -11,6 +11,7 @@ namespace {
 
 std::atomic<bool> g_stop{false};
 std::atomic<int> g_signal{0};
+std::atomic<bool> g_handled{false};
 
 /// Fixed storage: the handler may only touch memory that needs no allocation or lock.
 constexpr std::size_t kSlots = 64;
@@ -74,6 +75,14 @@ const char* signal_name(int sig) noexcept {
 int interrupted_exit_code() noexcept {
   const int sig = interrupt_signal();
   return 128 + (sig != 0 ? sig : SIGINT);
+}
+
+void mark_interrupt_handled() noexcept {
+  g_handled.store(true);
+}
+
+bool interrupt_handled() noexcept {
+  return g_handled.load();
 }
 
 Interrupted::Interrupted(int sig)

@@ -24,6 +24,10 @@ void install_interrupt_handlers();
 [[nodiscard]] const char* signal_name(int sig) noexcept;
 /// 128 + the signal (130 for SIGINT, 143 for SIGTERM).
 [[nodiscard]] int interrupted_exit_code() noexcept;
+/// The command has dealt with the signal itself (localize: a complete run written before
+/// the signal came stays exit 0); otherwise main turns a 0 after a signal into 130 / 143.
+void mark_interrupt_handled() noexcept;
+[[nodiscard]] bool interrupt_handled() noexcept;
 
 /// A command stopped by a signal before it wrote anything; run_reporting_errors reports it
 /// and exits 128 + signal.

@@ -178,6 +178,7 @@ io::RunMetrics run_localization(const LocalizeJob& job, const LocalizeOutputs& o
 }
 
 int finish_exit_code(const io::RunMetrics& m, const std::string& out_dir) {
+  mark_interrupt_handled();
   if (m.complete) return kExitOk;
   std::fprintf(stderr,
                "pgmcl: interrupted by %s after %zu update(s); wrote the run so far to %s "

@@ -54,7 +54,16 @@ int main(int argc, char** argv) {
           return pgmcl::app::kExitUsage;
         }
         for (const auto& c : commands) {
-          if (c.sub->parsed()) return c.run();
+          if (!c.sub->parsed()) continue;
+          const int code = c.run();
+          // A command that finished although the user asked it to stop still reports it.
+          if (code == pgmcl::app::kExitOk && pgmcl::app::interrupted() &&
+              !pgmcl::app::interrupt_handled()) {
+            std::cerr << "pgmcl: interrupted by "
+                      << pgmcl::app::signal_name(pgmcl::app::interrupt_signal()) << "\n";
+            return pgmcl::app::interrupted_exit_code();
+          }
+          return code;
         }
         return pgmcl::app::kExitUsage;  // unreachable: require_subcommand(1)
       },

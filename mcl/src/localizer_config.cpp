@@ -77,7 +77,7 @@ std::string IntRange::text() const {
 }
 
 std::string IntRange::memory(std::uint64_t v) const {
-  if (unit_bytes <= 0.0) return "";
+  if (unit_bytes <= 0.0 || v <= hi) return "";
   const double bytes = unit_bytes * static_cast<double>(v);
   char buf[128];
   std::snprintf(buf, sizeof buf, " (about %.0f bytes each: %.3g would take %.3g GB)", unit_bytes,

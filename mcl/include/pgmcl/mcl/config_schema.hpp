@@ -62,7 +62,7 @@ struct IntRange {
   std::uint64_t hi = std::numeric_limits<std::uint64_t>::max();
   double unit_bytes = 0.0;  ///< memory one unit costs, for the message (0: not a size)
   [[nodiscard]] std::string text() const;
-  /// " (about 110 bytes each: 1e+12 would take 110 TB)" for a size, else "".
+  /// " (about 110 bytes each: 1e+12 would take 1.1e+05 GB)" for a size above hi, else "".
   [[nodiscard]] std::string memory(std::uint64_t v) const;
 };
 

@@ -7,8 +7,13 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash cmake/setup.sh
 jobs=${PGMCL_JOBS:-2}
-cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release -DPGMCL_WITH_PYTHON=ON >/dev/null
 cmake --build build/release -j"$jobs" --target pgmcl
+# The Python module (build/release/python/pgmcl) when its packages are there (setup.sh).
+python=$(sed -n 's/^PGMCL_PYTHON_BUILT:INTERNAL=//p' build/release/CMakeCache.txt)
+if [[ $python == ON ]]; then
+  cmake --build build/release -j"$jobs" --target pgmcl_python
+fi
 pgmcl=build/release/pgmcl
 out=out/demo
 mkdir -p "$out/intel"
@@ -21,5 +26,10 @@ $pgmcl run configs/experiments/intel-demo.yaml --out "$out/intel/tracking"
 
 echo "== Simulated UTM-30LX scene (the paper's sensor, 1081 beams)"
 $pgmcl run configs/experiments/lab.yaml --out "$out/utm-lab"
+
+if [[ $python == ON ]]; then
+  echo "== From Python (README): the Intel case again, ATE RMSE in metres"
+  PYTHONPATH=build/release/python /usr/bin/python3 -c "import pgmcl; print(pgmcl.localize('out/demo/intel/map.yaml', 'out/demo/intel/raw.log.gz', truth='out/demo/intel/truth.tum', seed=1).metrics['ate_rmse_m'])"
+fi
 
 echo "== Results in $out/ (trajectory.tum, metrics.yaml, overlay.png, error.png per run)"

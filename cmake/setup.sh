@@ -9,6 +9,8 @@ packages=(
   clang libclang-rt-14-dev libomp-dev       # libFuzzer targets (clang) and OpenMP for clang
   gnuplot-nox                               # benchmark plots
   python3                                   # the robustness suite (bench/robustness/run.py)
+  python3-dev pybind11-dev python3-numpy    # the Python module (mcl/python)
+  python3-pytest python3-matplotlib         # its tests and example
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -30,11 +30,8 @@ void ensure_parent_directory(const std::string& file);
 /// The image file a map YAML names, resolved against the YAML's folder (reads the YAML only).
 [[nodiscard]] std::string map_image_path(const std::string& map_yaml);
 
-/// True for CARMEN log names: *.log, *.clf, optionally followed by .gz.
-[[nodiscard]] bool is_carmen_path(const std::string& path);
-
 /// Ground truth from a TUM file, or from a CARMEN log (the robot poses of its laser scans,
-/// io::scan_truth, of the first laser message type with poses), chosen by is_carmen_path.
+/// io::scan_truth, of the first laser message type with poses), chosen by io::is_carmen_path.
 [[nodiscard]] io::Trajectory load_truth(const std::string& path);
 
 /// CLI11 checks with short messages ("must be > 0" rather than CLI11's range dump).

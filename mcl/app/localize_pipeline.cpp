@@ -150,9 +150,9 @@ io::RunMetrics run_localization(const LocalizeJob& job, const LocalizeOutputs& o
   replay::ReplayResult run = replay::run(job, hooks);
   if (progress) progress->finish();
   for (const std::string& w : run.warnings) std::fprintf(stderr, "pgmcl: warning: %s\n", w.c_str());
+  // The run's own warnings are in its metrics already; those found before it go first.
   io::RunMetrics& metrics = run.metrics;
-  metrics.warnings = job.warnings;
-  metrics.warnings.insert(metrics.warnings.end(), run.warnings.begin(), run.warnings.end());
+  metrics.warnings.insert(metrics.warnings.begin(), job.warnings.begin(), job.warnings.end());
 
   io::write_tum(out.trajectory, run.trajectory);
   write_text_file(out.metrics, io::metrics_yaml(metrics));

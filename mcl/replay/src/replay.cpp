@@ -292,6 +292,7 @@ ReplayResult run(const ReplayJob& job, const ReplayHooks& hooks) {
       out.metrics.relations = io::relations_metrics(rel);
     }
   }
+  out.metrics.warnings = out.warnings;
   const ParticlesView pv = loc.particles();
   out.particles.reserve(pv.size());
   for (std::size_t i = 0; i < pv.size(); ++i) out.particles.push_back(pv.global_pose(i));

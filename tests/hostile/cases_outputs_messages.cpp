@@ -482,6 +482,16 @@ std::vector<Case> message_cases() {
                  return e.localize("", "", "m.yaml");
                },
                {"empty.pgm", "empty"}});
+  c.push_back({"map_given_as_its_image",
+               Expect::kError,
+               1,
+               [](const Env& e) { return e.localize("", "", e.b.image); },
+               {"map.pgm", "is an image", "not a map YAML"}});
+  c.push_back({"log_given_as_an_image",
+               Expect::kError,
+               2,
+               [](const Env& e) { return e.localize("", e.b.image); },
+               {"no laser scan with odometry"}});
   c.push_back({"log_is_a_folder",
                Expect::kError,
                2,

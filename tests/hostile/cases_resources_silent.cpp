@@ -470,6 +470,18 @@ std::vector<Case> silent_cases() {
                                    PGMCL_SOURCE_DIR "/data/maps/nav2/depot.yaml");
                },
                {"hardly matched the map"}});
+  // Runs in which the filter hardly measured anything: the trajectory is dead reckoning.
+  c.push_back(
+      {"everything_gated",
+       Expect::kWarning,
+       0,
+       [](const Env& e) { return e.localize("--set gating.d_min=1e9 --set gating.theta_min=1e9"); },
+       {"measured only 1 of 120 scans", "119 gated"}});
+  c.push_back({"max_range_shorter_than_every_reading",
+               Expect::kWarning,
+               0,
+               [](const Env& e) { return e.localize("--set likelihood.beam.max_range=0.2"); },
+               {"measured only 0 of 120 scans", "without a valid reading"}});
   // Laser headers that disagree with their readings: the line is dropped and reported.
   // Every 10th scan with a header that disagrees: those are dropped and reported.
   const auto some_bad_headers = [](double fov, double res) {

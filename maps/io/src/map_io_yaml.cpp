@@ -112,6 +112,11 @@ namespace {
 
 MapMetadata parse_map_yaml(const std::string& yaml_path, MapLoadReport* report, int* image_line) {
   const detail::Bytes bytes = detail::read_file_bytes(yaml_path, "map YAML file");
+  if (detail::is_pnm(bytes) || detail::is_png(bytes) || detail::is_gzip(bytes)) {
+    throw MapError(yaml_path, 0, "yaml",
+                   "is an image (or gzip), not a map YAML: give the .yaml file that names it "
+                   "(image:, resolution:, origin:)");
+  }
   YAML::Node root;
   try {
     root = YAML::Load(std::string(bytes.begin(), bytes.end()));

@@ -26,6 +26,15 @@ std::string gz_message(void* f) {
 
 }  // namespace
 
+void check_record_memory(std::size_t records, std::size_t record_bytes, const std::string& source,
+                         std::size_t line) {
+  if (records * record_bytes <= kMaxRecordBytes) return;
+  throw FormatError(source, line, "file",
+                    "holds more than " + std::to_string(kMaxRecordBytes >> 20) +
+                        " MiB of records by this line (" + std::to_string(records) + " of " +
+                        std::to_string(record_bytes) + " bytes each); split it");
+}
+
 bool is_gzip_path(std::string_view path) noexcept {
   return path.size() >= 3 && path.substr(path.size() - 3) == ".gz";
 }

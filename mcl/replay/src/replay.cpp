@@ -237,7 +237,20 @@ ReplayResult run(const ReplayJob& job, const ReplayHooks& hooks) {
         g(jumps.largest_dt) + " s, before line " + std::to_string(jumps.largest_line) +
         "); the filter moves its particles by them and is likely lost there");
   }
-  if (out.metrics.updates >= 10 && out.metrics.fit_mean < kLowFit) {
+  const std::size_t all = out.metrics.updates + out.metrics.skipped_updates;
+  if (all >= 10 && out.metrics.updates * 10 < all) {
+    std::size_t not_moved = 0, no_beams = 0;
+    for (const UpdateRow& u : out.rows) {
+      not_moved += u.skipped == SkipReason::kNotMoved ? 1 : 0;
+      no_beams += u.skipped == SkipReason::kNoValidBeams ? 1 : 0;
+    }
+    out.warnings.push_back("the filter measured only " + std::to_string(out.metrics.updates) +
+                           " of " + std::to_string(all) + " scans (" + std::to_string(not_moved) +
+                           " gated: the odometry moved less than gating.d_min / theta_min; " +
+                           std::to_string(no_beams) +
+                           " without a valid reading: check likelihood.beam.max_range and the "
+                           "ranges), so the trajectory is mostly dead reckoning");
+  } else if (out.metrics.updates >= 10 && out.metrics.fit_mean < kLowFit) {
     out.warnings.push_back(
         "the scans hardly matched the map: mean fit " + g(out.metrics.fit_mean) + " over " +
         std::to_string(out.metrics.updates) +

@@ -15,6 +15,15 @@ namespace pgmcl::io {
 /// declare (2^20 ranges and as many remissions) fits; a gzip bomb's one endless line does not.
 inline constexpr std::size_t kMaxLineBytes = std::size_t{64} << 20;
 
+/// Memory the records of one file may take (CARMEN, TUM, relations): a gzip bomb of valid
+/// lines is refused at the line that crosses it instead of exhausting memory.
+inline constexpr std::size_t kMaxRecordBytes = std::size_t{4} << 30;
+
+/// Throws FormatError(source, line, "file", ...) once `records` records of `record_bytes`
+/// each would take more than kMaxRecordBytes.
+void check_record_memory(std::size_t records, std::size_t record_bytes, const std::string& source,
+                         std::size_t line);
+
 /// Reads a text file (plain or gzip) line by line and counts lines from 1.
 class LineReader {
  public:

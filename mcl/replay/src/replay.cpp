@@ -234,7 +234,7 @@ ReplayResult run(const ReplayJob& job, const ReplayHooks& hooks) {
     out.warnings.push_back(
         job.log_name + ": " + std::to_string(jumps.count) + " odometry jump(s) faster than " +
         g(kMaxSpeed) + " m/s between consecutive scans (largest " + g(jumps.largest) + " m in " +
-        g(jumps.largest_dt) + " s, before line " + std::to_string(jumps.largest_line) +
+        g(jumps.largest_dt) + " s, at the scan on line " + std::to_string(jumps.largest_line) +
         "); the filter moves its particles by them and is likely lost there");
   }
   const std::size_t all = out.metrics.updates + out.metrics.skipped_updates;

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <map>
 #include <stdexcept>
 #include <system_error>
@@ -13,6 +16,7 @@
 #include "pgmcl/io/errors.hpp"
 #include "pgmcl/io/tum.hpp"
 #include "pgmcl/io/values.hpp"
+#include "pgmcl/map_io/map_io.hpp"
 
 namespace pgmcl::app {
 
@@ -185,6 +189,36 @@ void DeprecatedName::note_if_used() const {
   }
 }
 
+CLI::Validator whole_number(std::uint64_t lo, std::uint64_t hi) {
+  const std::string rule =
+      "a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  return CLI::Validator(
+      [lo, hi, rule](std::string& text) -> std::string {
+        std::uint64_t v = 0;
+        const char* first = text.data();
+        const char* last = text.data() + text.size();
+        const auto [ptr, ec] = std::from_chars(first, last, v);
+        const bool digits =
+            !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+        if (!digits || ec != std::errc() || ptr != last) {
+          return "must be " + rule + ", got '" + text + "'";
+        }
+        return v >= lo && v <= hi ? std::string() : "must be " + rule + ", got " + text;
+      },
+      rule, "WHOLE_NUMBER");
+}
+
+CLI::Option* add_seed_option(CLI::App& sub, std::uint64_t& seed, const std::string& help) {
+  return sub.add_option("--seed", seed, help)->check(whole_number());
+}
+
+std::string threads_warning(int threads) {
+  const unsigned cores = std::thread::hardware_concurrency();
+  if (cores == 0 || threads <= static_cast<int>(cores)) return "";
+  return "threads = " + std::to_string(threads) + " is more than the " + std::to_string(cores) +
+         " cores of this machine; the threads take turns (slower, same result)";
+}
+
 CLI::Validator positive() {
   return number_check([](double v) { return v > 0.0; }, "> 0", "POSITIVE");
 }
@@ -193,7 +227,14 @@ CLI::Validator non_negative() {
   return number_check([](double v) { return v >= 0.0; }, ">= 0", "NONNEGATIVE");
 }
 
-io::CarmenLog read_log(const std::string& path, const io::CarmenReadOptions& opt, bool strict) {
+std::string map_image_path(const std::string& map_yaml) {
+  const std::filesystem::path image(maps::read_map_yaml(map_yaml).image);
+  return image.is_relative() ? (std::filesystem::path(map_yaml).parent_path() / image).string()
+                             : image.string();
+}
+
+io::CarmenLog read_log(const std::string& path, const io::CarmenReadOptions& opt, bool strict,
+                       std::vector<std::string>* warnings) {
   io::CarmenReadOptions o = opt;
   o.strict = strict;
   io::CarmenLog log = io::read_carmen(path, o);
@@ -206,6 +247,14 @@ io::CarmenLog read_log(const std::string& path, const io::CarmenReadOptions& opt
                  "pgmcl: warning: %s: dropped %zu malformed line(s) (use --strict to make this an "
                  "error):\n",
                  path.c_str(), r.malformed);
+    if (warnings != nullptr) {
+      std::string w = path + ": dropped " + std::to_string(r.malformed) + " malformed line(s)";
+      if (!r.malformed_lines.empty()) {
+        const io::LineIssue& i = r.malformed_lines.front();
+        w += ", the first on line " + std::to_string(i.line) + ": " + i.field + ": " + i.message;
+      }
+      warnings->push_back(std::move(w));
+    }
     const std::size_t listed = std::min(kListed, r.malformed_lines.size());
     for (std::size_t k = 0; k < listed; ++k) {
       const io::LineIssue& i = r.malformed_lines[k];
@@ -225,6 +274,16 @@ io::CarmenLog read_log(const std::string& path, const io::CarmenReadOptions& opt
   return log;
 }
 
+void write_text_file(const std::string& path, const std::string& text) {
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (f == nullptr) throw io::IoError(path + ": cannot create file (" + std::strerror(errno) + ")");
+  const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  const bool flushed = std::fflush(f) == 0;
+  const std::string why = std::strerror(errno);
+  const bool closed = std::fclose(f) == 0;
+  if (!written || !flushed || !closed) throw io::IoError(path + ": write failed (" + why + ")");
+}
+
 std::string format_seconds(double s) {
   char buf[64];
   if (s < 1.0) {
@@ -233,15 +292,6 @@ std::string format_seconds(double s) {
     std::snprintf(buf, sizeof buf, "%.1f s", s);
   }
   return buf;
-}
-
-void warn_if_oversubscribed(int threads) {
-  const unsigned cores = std::thread::hardware_concurrency();
-  if (threads <= 0 || cores == 0 || static_cast<unsigned>(threads) <= cores) return;
-  std::fprintf(stderr,
-               "pgmcl: warning: %d threads on %u cores: the threads take turns and each update "
-               "gets slower, not faster (the result is the same for any count)\n",
-               threads, cores);
 }
 
 }  // namespace pgmcl::app

@@ -8,6 +8,7 @@
 
 #include "app_util.hpp"
 #include "commands.hpp"
+#include "output_files.hpp"
 #include "pgmcl/eval/evaluation.hpp"
 #include "pgmcl/eval/metrics.hpp"
 #include "pgmcl/eval/relations_error.hpp"
@@ -53,6 +54,11 @@ int run_eval(EvalOptions o) {
   // relations are in another clock), else it shifts the estimate against the truth.
   if (o.time_offset_opt->count() > 0 && o.relations.empty() && o.truth_offset_opt->count() == 0)
     o.ate.time_offset = o.time_offset;
+  OutputFiles files;
+  files.input(o.estimate, "--estimate");
+  files.input(o.truth, "--truth");
+  files.input(o.relations, "--relations");
+  const std::string out_tmp = o.out.empty() ? std::string() : files.add(o.out, "--out");
   const io::Trajectory est = io::read_tum(o.estimate);
   const io::Trajectory truth = load_truth(o.truth);
   io::RunMetrics m;
@@ -87,8 +93,8 @@ int run_eval(EvalOptions o) {
   print_definitions(*m.accuracy, o.ate);
   std::printf("%s", io::metrics_table(m, false).c_str());
   if (!o.out.empty()) {
-    ensure_parent_directory(o.out);
-    io::write_metrics_yaml(o.out, m, false);
+    write_text_file(out_tmp, io::metrics_yaml(m, false));
+    files.commit();
   }
   return 0;
 }

@@ -54,6 +54,13 @@ int run_kernel(const KernelOptions& o) {
       "sum %.4f (normalised over the %dx%d table; mass captured before normalising "
       "%.4f)\n",
       sum, t.side(), t.side(), t.captured_mass);
+  if (t.captured_mass < 0.5) {
+    std::fprintf(stderr,
+                 "pgmcl: warning: the %dx%d table holds only %.1f %% of the kernel's mass, so "
+                 "the normalised values above describe its centre, not the kernel: raise "
+                 "--radius or --cell\n",
+                 t.side(), t.side(), 100.0 * t.captured_mass);
+  }
   return 0;
 }
 
@@ -63,22 +70,23 @@ Command add_kernel_command(CLI::App& app) {
   auto o = std::make_shared<KernelOptions>();
   CLI::App* sub = app.add_subcommand(
       "kernel", "Print the tabular beam model (Dekan et al., Table 5) for given sigmas");
-  // Millimetres, as Dekan et al.'s tables; a unit may be given ("0.05m" is 50 mm).
+  // Millimetres, as Dekan et al.'s tables; a unit may be given ("0.05m" is 50 mm). Sigmas up
+  // to 10 m, the filter's bound on a sigma (config_schema::kSigma); cells from 1 µm to 1 km.
   sub->add_option("--sigma-x", o->sigma_x_mm, "Sigma along the beam, mm (or with a unit: 5.7mm)")
       ->capture_default_str()
       ->transform(length_in("mm"))
-      ->check(positive())
+      ->check(positive() & CLI::Range(0.0, 1e4))
       ->type_name("MM");
   sub->add_option("--sigma-y", o->sigma_y_mm, "Sigma across the beam, mm (or with a unit)")
       ->capture_default_str()
       ->transform(length_in("mm"))
-      ->check(positive())
+      ->check(positive() & CLI::Range(0.0, 1e4))
       ->type_name("MM");
   sub->add_option("--cell", o->cell_mm,
                   "Cell size, mm (or with a unit: 0.05m is pgmcl map --resolution 0.05)")
       ->capture_default_str()
       ->transform(length_in("mm"))
-      ->check(positive())
+      ->check(positive() & CLI::Range(1e-3, 1e6))
       ->type_name("MM");
   sub->add_option("--angle", o->angle_deg, "Beam angle in the map frame, degrees")
       ->capture_default_str();

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "pgmcl/config/config_yaml.hpp"
 #include "pgmcl/io/relations.hpp"
 #include "pgmcl/map_io/map_io.hpp"
+#include "pgmcl/mcl/config_schema.hpp"
 
 namespace pgmcl::app {
 namespace {
@@ -26,6 +28,7 @@ struct LocalizeOptions {
   std::string config;
   std::vector<std::string> sets;
   std::string init;
+  CLI::Option* init_opt = nullptr;
   bool global = false;
   std::string truth;
   std::string relations;
@@ -45,11 +48,24 @@ int run_localize(const LocalizeOptions& o) {
   io::apply_localizer_overrides(o.sets, job.config);
   if (o.threads_opt->count() > 0) job.config.threads = o.threads;
   if (o.seed_opt->count() > 0) job.config.seed = o.seed;
+  // --init "" is a mistake, not a request for global localisation.
+  if (o.init_opt->count() > 0) job.init = parse_init(o.init);
+
+  // Every output and input is known before any work: an unwritable --out or an output that
+  // would overwrite an input fails now, not after the run.
+  OutputFiles files;
+  files.input(o.map, "--map");
+  files.input(map_image_path(o.map), "--map's image");
+  files.input(o.log, "--log");
+  files.input(o.config, "--config");
+  files.input(o.truth, "--truth");
+  files.input(o.relations, "--relations");
+  const LocalizeOutputs outputs = register_localize_outputs(files, o.out, "--out");
 
   maps::MapLoadReport report;
   const maps::OccupancyGrid map = maps::load_map(o.map, &report);
-  for (const auto& w : report.warnings) std::fprintf(stderr, "pgmcl: warning: %s\n", w.c_str());
-  const io::CarmenLog log = read_log(o.log, {}, o.strict);
+  for (const auto& w : report.warnings) warn(job, w);
+  const io::CarmenLog log = read_log(o.log, {}, o.strict, &job.warnings);
 
   job.map = &map;
   job.log = &log;
@@ -59,18 +75,16 @@ int run_localize(const LocalizeOptions& o) {
     job.relations = io::read_relations(o.relations);
     job.relations_time_offset = o.time_offset;
   }
-  if (!o.init.empty()) {
-    job.init = parse_init(o.init);
-  } else if (!o.global && job.truth) {
+  if (o.init_opt->count() == 0 && !o.global && job.truth) {
     job.init.kind = InitialBelief::Kind::kTruth;
   }
-  job.out_dir = o.out;
+  check_job(job, o.map, "--init");
   job.map_name = o.map;
   job.title = run_title(o.out, o.log);
   job.quiet = o.quiet;
-  const io::RunMetrics m = run_localization(job);
+  const io::RunMetrics m = run_localization(job, outputs, files);
   std::printf("%s\n", summary_line(m, o.out, job.config).c_str());
-  return 0;
+  return finish_exit_code(m, o.out);
 }
 
 }  // namespace
@@ -91,10 +105,10 @@ Command add_localize_command(CLI::App& app) {
       ->check(filter_file());
   sub->add_option("--set", o->sets, "Override a config key, e.g. filter.particles=2000")
       ->take_all();
-  auto* init =
+  o->init_opt =
       sub->add_option("--init", o->init, "Initial pose X,Y,THETA[,SX,SY,STH] (metres, radians)");
   auto* global = sub->add_flag("--global", o->global, "Start with global localisation");
-  init->excludes(global);
+  o->init_opt->excludes(global);
   sub->add_option("--truth", o->truth, "Ground truth: TUM file or a corrected CARMEN log")
       ->check(CLI::ExistingFile)
       ->check(trajectory_file(true));
@@ -105,8 +119,8 @@ Command add_localize_command(CLI::App& app) {
                   "Seconds added to log stamps to match the relations")
       ->needs(rel);
   o->threads_opt = sub->add_option("--threads", o->threads, "OpenMP threads (0 = OpenMP default)")
-                       ->check(non_negative());
-  o->seed_opt = sub->add_option("--seed", o->seed, "Random seed");
+                       ->check(whole_number(0, config_schema::kMaxThreads));
+  o->seed_opt = add_seed_option(*sub, o->seed, "Random seed");
   sub->add_option("--out", o->out, "Output directory")->capture_default_str();
   sub->add_flag("--strict", o->strict, "Malformed log lines are errors, not warnings");
   sub->add_flag("--quiet", o->quiet, "No progress output");

@@ -12,6 +12,7 @@
 #include "app_util.hpp"
 #include "cli_errors.hpp"
 #include "commands.hpp"
+#include "interrupt.hpp"
 #include "localize_pipeline.hpp"
 #include "pgmcl/config/experiment_yaml.hpp"
 #include "pgmcl/config/scenario_yaml.hpp"
@@ -20,6 +21,7 @@
 #include "pgmcl/io/tum.hpp"
 #include "pgmcl/io/values.hpp"
 #include "pgmcl/map_io/map_io.hpp"
+#include "pgmcl/mcl/config_schema.hpp"
 #include "pgmcl/sims/scenario.hpp"
 
 namespace pgmcl::app {
@@ -92,24 +94,43 @@ int run_run(const RunOptions& o) {
   if (o.seed_opt->count() > 0) sets.push_back("seed=" + std::to_string(o.seed));
   const io::Experiment e = io::read_experiment(o.experiment, sets);
   for (const std::string& n : e.notes) std::fprintf(stderr, "pgmcl: note: %s\n", n.c_str());
-  const std::filesystem::path out = ensure_directory(e.out);
+
+  OutputFiles files;
+  files.input(o.experiment, "experiment");
+  files.input(e.scenario, "data.scenario");
+  files.input(e.log, "data.log");
+  files.input(e.truth, "data.truth");
+  files.input(e.relations, "data.relations");
+  if (!e.map.empty()) {
+    files.input(e.map, "map");
+    files.input(map_image_path(e.map), "map's image");
+  }
+  const LocalizeOutputs outputs = register_localize_outputs(files, e.out, "out");
+  std::string sim_log, sim_truth;
+  if (!e.scenario.empty()) {
+    sim_log = files.add((std::filesystem::path(e.out) / "sim.log.gz").string(), "out");
+    sim_truth = files.add((std::filesystem::path(e.out) / "truth.tum").string(), "out");
+  }
 
   LocalizeJob job;
   job.config = e.filter;
-  job.out_dir = e.out;
   job.title = e.name;
   job.quiet = o.quiet;
+  job.init = to_belief(e, !e.scenario.empty() || !e.truth.empty());
   maps::OccupancyGrid map, world;
   std::string scenario_map;
   io::CarmenLog log;
   if (!e.scenario.empty()) {
     const io::ScenarioFile sf = io::read_scenario_file(e.scenario, world);
     scenario_map = sf.map_path;
+    files.input(sf.map_path, "the scenario's map");
+    files.input(map_image_path(sf.map_path), "the scenario's map image");
     const sims::SimulationLog sim = sims::simulate(sf.scenario, world, e.filter.threads);
+    check_interrupt();
     if (sim.records.empty())
       throw std::runtime_error(e.scenario + ": simulation produced no scans");
-    io::write_sim_carmen((out / "sim.log.gz").string(), sim);
-    io::write_sim_truth_tum((out / "truth.tum").string(), sim);
+    io::write_sim_carmen(sim_log, sim);
+    io::write_sim_truth_tum(sim_truth, sim);
     log = io::to_carmen_log(sim);
     job.log_name = e.scenario + " (simulated)";
     job.truth = io::sim_truth_trajectory(sim);
@@ -120,14 +141,15 @@ int run_run(const RunOptions& o) {
                    sim.records.size(), e.scenario.c_str());
     }
   } else {
-    log = read_log(e.log, {}, false);
+    log = read_log(e.log, {}, false, &job.warnings);
     job.log_name = e.log;
   }
   if (!e.truth.empty()) job.truth = load_truth(e.truth);
+  const std::string map_name = e.map.empty() ? e.scenario : e.map;
   if (!e.map.empty()) {
     maps::MapLoadReport report;
     map = maps::load_map(e.map, &report);
-    for (const auto& w : report.warnings) std::fprintf(stderr, "pgmcl: warning: %s\n", w.c_str());
+    for (const auto& w : report.warnings) warn(job, w);
     job.map = &map;
     job.map_name = e.map;
   } else {
@@ -139,10 +161,10 @@ int run_run(const RunOptions& o) {
     job.relations = io::read_relations(e.relations);
     job.relations_time_offset = e.time_offset;
   }
-  job.init = to_belief(e, job.truth.has_value());
-  const io::RunMetrics m = run_localization(job);
+  check_job(job, map_name, e.path + ": init");
+  const io::RunMetrics m = run_localization(job, outputs, files);
   std::printf("%s: %s\n", e.name.c_str(), summary_line(m, e.out, job.config).c_str());
-  return 0;
+  return finish_exit_code(m, e.out);
 }
 
 }  // namespace
@@ -161,8 +183,8 @@ Command add_run_command(CLI::App& app) {
                   "map, out, init (x,y,theta[,sx,sy,stheta] or YAML), data.*")
       ->take_all();
   o->threads_opt = sub->add_option("--threads", o->threads, "OpenMP threads (0 = OpenMP default)")
-                       ->check(non_negative());
-  o->seed_opt = sub->add_option("--seed", o->seed, "Random seed of the filter");
+                       ->check(whole_number(0, config_schema::kMaxThreads));
+  o->seed_opt = add_seed_option(*sub, o->seed, "Random seed of the filter");
   sub->add_flag("--quiet", o->quiet, "No progress output");
   return {sub, [o] { return run_run(*o); }};
 }

@@ -12,8 +12,11 @@
 
 #include "app_util.hpp"
 #include "commands.hpp"
+#include "interrupt.hpp"
+#include "output_files.hpp"
 #include "pgmcl/config/scenario_yaml.hpp"
 #include "pgmcl/io/sim_log_io.hpp"
+#include "pgmcl/mcl/config_schema.hpp"
 #include "pgmcl/sims/scenario.hpp"
 
 namespace pgmcl::app {
@@ -35,20 +38,27 @@ int run_simulate(const SimulateOptions& o) {
   o.truth_name.note_if_used();
   std::vector<std::string> sets = o.sets;
   if (o.seed_opt->count() > 0) sets.push_back("seed=" + std::to_string(o.seed));
+  OutputFiles files;
+  files.input(o.scenario, "scenario");
+  const std::string out_tmp = files.add(o.out, "--out");
+  const std::string truth_tmp =
+      o.truth.empty() ? std::string() : files.add(o.truth, o.truth_name.used());
   maps::OccupancyGrid map;
   const io::ScenarioFile sf = io::read_scenario_file(o.scenario, map, sets);
-  warn_if_oversubscribed(o.threads);
+  files.input(sf.map_path, "the scenario's map");
+  files.input(map_image_path(sf.map_path), "the scenario's map image");
+  if (const std::string w = threads_warning(o.threads); !w.empty()) {
+    std::fprintf(stderr, "pgmcl: warning: %s\n", w.c_str());
+  }
   const sims::SimulationLog log = sims::simulate(sf.scenario, map, o.threads);
+  check_interrupt();
   if (log.records.empty()) {
     throw std::runtime_error(o.scenario + ": the simulation produced no scans (duration " +
                              std::to_string(sf.scenario.duration) + " s)");
   }
-  ensure_parent_directory(o.out);
-  io::write_sim_carmen(o.out, log);
-  if (!o.truth.empty()) {
-    ensure_parent_directory(o.truth);
-    io::write_sim_truth_tum(o.truth, log);
-  }
+  io::write_sim_carmen(out_tmp, log);
+  if (!o.truth.empty()) io::write_sim_truth_tum(truth_tmp, log);
+  files.commit();
   if (!o.quiet) {
     double travelled = 0.0;
     for (std::size_t i = 1; i < log.records.size(); ++i) {
@@ -87,11 +97,11 @@ Command add_simulate_command(CLI::App& app) {
                   "Override a scenario key, e.g. duration=20 or robot.start=[1,2,0] (value read "
                   "as YAML)")
       ->take_all();
-  o->seed_opt = sub->add_option("--seed", o->seed, "Random seed (the scenario's seed: key)");
+  o->seed_opt = add_seed_option(*sub, o->seed, "Random seed (the scenario's seed: key)");
   sub->add_option("--threads", o->threads,
                   "OpenMP threads (0 = OpenMP default); the log is the same for any count")
       ->capture_default_str()
-      ->check(non_negative());
+      ->check(whole_number(0, config_schema::kMaxThreads));
   sub->add_flag("--quiet", o->quiet, "No summary line");
   return {sub, [o] { return run_simulate(*o); }};
 }

@@ -90,11 +90,13 @@ TEST(CliLocalize, MoreThreadsThanCoresWarns) {
   const RunResult r = run_pgmcl(
       "localize --map room.yaml --log raw.log --out out --quiet --threads " + over + kSmall, dir);
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.err.find("pgmcl: warning: " + over + " threads on "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("pgmcl: warning: threads = " + over + " is more than the "),
+            std::string::npos)
+      << r.err;
   const RunResult one = run_pgmcl(
       std::string("localize --map room.yaml --log raw.log --out out --quiet --threads 1") + kSmall,
       dir);
-  EXPECT_EQ(one.err.find("threads on"), std::string::npos) << one.err;
+  EXPECT_EQ(one.err.find("is more than the"), std::string::npos) << one.err;
 }
 
 TEST(CliLocalize, ALogWithoutOdometryIsBadInputNotABadCommandLine) {

@@ -3,7 +3,10 @@
 
 #include "pgmcl/io/file_kind.hpp"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <string>
@@ -114,6 +117,22 @@ TEST(FileKind, ExpectNamesTheOptionTheKindAndWhatToDo) {
       file_kind_problem(dir.file("m.yaml"), {FileKind::kCarmenLog}, "a CARMEN log")
           .rfind("'" + dir.file("m.yaml") + "' is a map YAML (map_server), not a CARMEN log", 0),
       0u);
+}
+
+TEST(FileKind, AFifoIsLeftUnread) {
+  // Peeking at a FIFO would eat what the command reads next (perturb --log FIFO hung).
+  test::TempDir dir;
+  const std::string fifo = dir.file("in.log");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const int fd = ::open(fifo.c_str(), O_RDWR | O_NONBLOCK);  // never blocks on Linux
+  ASSERT_GE(fd, 0);
+  const std::string line = "ODOM 0 0 0 0 0 0 1.0 h 1.0\n";
+  ASSERT_EQ(::write(fd, line.data(), line.size()), static_cast<ssize_t>(line.size()));
+  EXPECT_EQ(detect_file_kind(fifo), FileKind::kUnknown);
+  EXPECT_EQ(file_kind_problem(fifo, {FileKind::kMapYaml}, "a map YAML"), "");
+  char buf[64];
+  EXPECT_EQ(::read(fd, buf, sizeof buf), static_cast<ssize_t>(line.size()));
+  ::close(fd);
 }
 
 }  // namespace

@@ -79,7 +79,7 @@ class ReadVisitor {
       std::uint64_t u = v;
       if (top().uint64(f.name, u)) {
         if (std::cmp_less(u, r.lo) || u > r.hi)
-          top().fail(f.name, "must be " + r.text() + ", got " + std::to_string(u));
+          top().fail(f.name, "must be " + r.text() + ", got " + std::to_string(u) + r.memory(u));
         v = static_cast<T>(u);
         note(f.name, true);
       }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <set>
 #include <sstream>
 #include <string_view>
@@ -135,6 +136,9 @@ const char* describe(FileKind kind) noexcept {
 }
 
 FileKind detect_file_kind(const std::string& path) noexcept {
+  // A FIFO or a device is read once: peeking at it would eat what the command then reads.
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return FileKind::kUnknown;
   try {
     LineReader in(path);
     std::string_view line;

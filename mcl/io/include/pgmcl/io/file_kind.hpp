@@ -27,7 +27,8 @@ enum class FileKind {
 /// "a PGM image", "a CARMEN log", ...: the kind as a noun phrase for messages.
 [[nodiscard]] const char* describe(FileKind kind) noexcept;
 
-/// Reads at most the first 200 lines of `path` (gzip-transparent). Never throws.
+/// Reads at most the first 200 lines of `path` (gzip-transparent); anything but a regular
+/// file (a FIFO, a device) is kUnknown, unread. Never throws.
 [[nodiscard]] FileKind detect_file_kind(const std::string& path) noexcept;
 
 /// "" when `path` may be one of `accepted`, else what is wrong and what to do instead:

@@ -191,6 +191,7 @@ std::string overlay_subtitle(const replay::ReplayResult& run, const std::string&
     }
   }
   s += ". Final cloud " + std::to_string(run.particles.size()) + " particles.";
+  if (!m.complete) s += " Interrupted: the run so far.";
   return s;
 }
 

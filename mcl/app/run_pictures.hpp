@@ -38,7 +38,7 @@ struct ErrorPlotData {
                                                                std::span<const double> events);
 
 /// The key figures for overlay.png's header: which log on which map (file names), how it
-/// started, ATE and lock-on, the final cloud.
+/// started, ATE and lock-on, the final cloud; whether a signal stopped the run.
 [[nodiscard]] std::string overlay_subtitle(const replay::ReplayResult& run, const std::string& log,
                                            const std::string& map);
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "plot.hpp"
@@ -95,6 +96,20 @@ TEST(CliErrorPlot, LogTicksAreDecadesCappedBelowTheTop) {
     for (int x = 0; x < c.width(); ++x)
       if (c.at(x, y) == colors::kRed) xmin = std::min(xmin, x), xmax = std::max(xmax, x);
   EXPECT_EQ(c.at((xmin + xmax) / 2, (ys.front() + ys.back()) / 2), colors::kRed);
+}
+
+TEST(CliOverlayHeader, NamesTheFilesAndSaysWhenTheRunWasInterrupted) {
+  replay::ReplayResult run;
+  run.start = "global localisation";
+  run.metrics.updates = 12;
+  const std::string whole = overlay_subtitle(run, "logs/raw.log.gz", "maps/map.yaml");
+  EXPECT_EQ(whole,
+            "raw.log.gz on map.yaml, start: global localisation. 12 updates. Final cloud 0 "
+            "particles.");
+  run.metrics.complete = false;
+  EXPECT_EQ(overlay_subtitle(run, "raw.log", "map.yaml"),
+            "raw.log on map.yaml, start: global localisation. 12 updates. Final cloud 0 "
+            "particles. Interrupted: the run so far.");
 }
 
 }  // namespace

@@ -98,7 +98,7 @@ const pgmcl::ParticleSet& cloud(World& w, std::size_t n, bool global) {
   return it->second;
 }
 
-// The bare loop the engine is judged against (PEERS.md): per particle one rotation, per beam
+// The bare loop the engine is judged against (bench/README.md): per particle one rotation, per beam
 // a transform, an unsigned bounds check, one byte gather and an add.
 [[gnu::noinline]] void yardstick_loop(const std::uint8_t* table, int width, int height,
                                       const float* ex, const float* ey, std::size_t m,

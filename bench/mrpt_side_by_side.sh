@@ -18,7 +18,7 @@
 # + CParticleFilter, SIR, systematic resampling), which needs libmrpt-dev at configure time.
 # The pf-localization app (mrpt-apps) is not used for figures: it writes no trajectory,
 # carmen2rawlog drops timestamps and mislays FLASER beams without a PARAM line, and
-# ros-map-yaml2mrpt snaps the origin (PEERS.md); the harness feeds MRPT the exact data.
+# ros-map-yaml2mrpt snaps the origin; the harness feeds MRPT the exact data.
 # Without MRPT this script says what to install and exits 0.
 #
 # Datasets: intel, aces, fr079 (first 1200 scans unless --full), csail; the maps come from

@@ -6,7 +6,7 @@
 /// (sweep_data.hpp, macro_common.hpp). It writes the trajectory-level figures the
 /// pf-localization app cannot: time per update and ATE against the truth.
 ///
-/// Matching choices (PEERS.md pitfalls):
+/// Matching choices (pitfalls of MRPT's own conversion tools):
 ///  - beam layout: MRPT spreads N beams over `aperture` symmetrically about the sensor's x
 ///    axis; the SICK layout of even beam counts is not symmetric (-90..+89 deg), so the
 ///    aperture is (N-1) * step and the sensor yaw is turned by the half-step offset;

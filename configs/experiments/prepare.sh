@@ -18,13 +18,15 @@
 #   biased.log.gz     realistic noise plus a systematic bias: translation reads 1.5 % long
 #                     and the heading drifts 0.4 deg per metre, seed 1
 # csail: the map comes from csail-corrected; raw.clf.gz is the real wheel odometry log
-# (copied unchanged) and truth.tum the corrected poses at the same scan stamps.
+# (copied unchanged) and truth.log.gz the corrected log itself (copied unchanged: --truth
+# and data.truth take a corrected log's scan poses, at the same stamps as raw.clf.gz).
 # The experiment files select the odometry with data.log (realistic by default);
 # `pgmcl run ... --set data.log=out/cases/intel/harsh.log.gz` switches profile.
 set -euo pipefail
-if [[ $# -lt 1 ]]; then
-  sed -n '2,25p' "$0"
-  exit 2
+if [[ $# -lt 1 || $1 == -h || $1 == --help ]]; then
+  # The comment block above, without its "# " and without any code.
+  awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"
+  [[ $# -lt 1 ]] && exit 2 || exit 0
 fi
 data=$1
 cd "$(dirname "$0")/../.."

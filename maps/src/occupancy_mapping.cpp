@@ -109,10 +109,13 @@ MapBounds compute_map_bounds(std::span<const RangeScanView> scans,
   }
   if (!(b.min_x <= b.max_x)) throw std::invalid_argument("compute_map_bounds: no scans");
   const double res = config.resolution;
-  b.min_x = std::floor((b.min_x - config.margin) / res) * res;
-  b.min_y = std::floor((b.min_y - config.margin) / res) * res;
-  b.max_x = std::ceil((b.max_x + config.margin) / res) * res;
-  b.max_y = std::ceil((b.max_y + config.margin) / res) * res;
+  // k * res carries the binary error of res (418 * 0.05 = 20.900000000000002): snapped to
+  // the nanometre, the origin a map file records is the decimal a person would write.
+  auto snap = [](double v) { return std::abs(v) < 1e6 ? std::round(v * 1e9) / 1e9 : v; };
+  b.min_x = snap(std::floor((b.min_x - config.margin) / res) * res);
+  b.min_y = snap(std::floor((b.min_y - config.margin) / res) * res);
+  b.max_x = snap(std::ceil((b.max_x + config.margin) / res) * res);
+  b.max_y = snap(std::ceil((b.max_y + config.margin) / res) * res);
   // A degenerate extent (one pose, no readings, zero margin) still gets one cell.
   if (b.max_x <= b.min_x) b.max_x = b.min_x + res;
   if (b.max_y <= b.min_y) b.max_y = b.min_y + res;

@@ -1,11 +1,13 @@
 #include "app_util.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <map>
 #include <stdexcept>
 #include <system_error>
 #include <thread>
@@ -35,8 +37,71 @@ void ensure_parent_directory(const std::string& file) {
 }
 
 io::Trajectory load_truth(const std::string& path) {
-  if (!io::is_carmen_path(path)) return io::read_tum(path);
-  return io::log_truth(read_log(path, {}, false), path);
+  const io::FileKind kind = io::detect_file_kind(path);
+  const bool log = kind == io::FileKind::kCarmenLog ||
+                   (kind != io::FileKind::kNumberTable && io::is_carmen_path(path));
+  if (!log) return io::read_tum(path);
+  try {
+    return io::log_truth(read_log(path, {}, false), path);
+  } catch (const io::UsageError& e) {
+    throw std::runtime_error(e.what());  // bad input (exit 1), not a bad command line
+  }
+}
+
+CLI::Validator file_kind(std::initializer_list<io::FileKind> accepted, std::string wanted) {
+  return CLI::Validator(
+      [kinds = std::vector<io::FileKind>(accepted), wanted](std::string& path) {
+        return io::file_kind_problem(path, kinds, wanted);
+      },
+      "", "file kind");
+}
+
+CLI::Validator length_in(const std::string& unit) {
+  return CLI::Validator(
+      [unit](std::string& text) -> std::string {
+        // The number, then an optional unit: "5", "5mm", "0.5 cm", "0.005m".
+        std::size_t end = text.size();
+        while (end > 0 && std::isalpha(static_cast<unsigned char>(text[end - 1]))) --end;
+        const std::string suffix = text.substr(end);
+        std::string number = text.substr(0, end);
+        while (!number.empty() && number.back() == ' ') number.pop_back();
+        double v = 0.0;
+        const double per_m = unit == "mm" ? 1000.0 : 1.0;  // this unit's value of a metre
+        const std::map<std::string, double> factors{
+            {"", 1.0}, {"mm", per_m / 1000.0}, {"cm", per_m / 100.0}, {"m", per_m}};
+        const auto f = factors.find(suffix);
+        if (f == factors.end() || !CLI::detail::lexical_cast(number, v) || !std::isfinite(v)) {
+          return "expected a length in " + unit + " or with a unit (5, 5mm, 0.5cm, 0.005m), got '" +
+                 text + "'";
+        }
+        text = io::format_number(v * f->second);
+        return {};
+      },
+      "", "length");
+}
+
+CLI::Validator map_file() {
+  return file_kind({io::FileKind::kMapYaml, io::FileKind::kOtherYaml},
+                   "a map YAML (map_server: image, resolution, origin)");
+}
+CLI::Validator log_file() {
+  return file_kind({io::FileKind::kCarmenLog}, "a CARMEN log");
+}
+CLI::Validator trajectory_file(bool log_ok) {
+  if (!log_ok) {
+    return file_kind({io::FileKind::kNumberTable},
+                     "a TUM trajectory (stamp x y z qx qy qz qw per line)");
+  }
+  return file_kind({io::FileKind::kNumberTable, io::FileKind::kCarmenLog},
+                   "a TUM trajectory or a corrected CARMEN log");
+}
+CLI::Validator filter_file() {
+  return file_kind({io::FileKind::kFilterYaml, io::FileKind::kOtherYaml},
+                   "a filter configuration (configs/filters/)");
+}
+CLI::Validator relations_file() {
+  return file_kind({io::FileKind::kNumberTable},
+                   "a relations file (t1 t2 x y z roll pitch yaw per line)");
 }
 
 namespace {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "pgmcl/io/carmen.hpp"
+#include "pgmcl/io/file_kind.hpp"
 
 namespace pgmcl::app {
 
@@ -31,8 +32,25 @@ void ensure_parent_directory(const std::string& file);
 [[nodiscard]] std::string map_image_path(const std::string& map_yaml);
 
 /// Ground truth from a TUM file, or from a CARMEN log (the robot poses of its laser scans,
-/// io::scan_truth, of the first laser message type with poses), chosen by io::is_carmen_path.
+/// io::scan_truth, of the first laser message type with poses), chosen by the content
+/// (io::detect_file_kind), else by io::is_carmen_path.
 [[nodiscard]] io::Trajectory load_truth(const std::string& path);
+
+/// CLI11 check that an input is the kind of file its option takes (io::file_kind_problem):
+/// "--map: 'm.pgm' is a PGM image, not a map YAML ...; a map is its YAML ...".
+[[nodiscard]] CLI::Validator file_kind(std::initializer_list<io::FileKind> accepted,
+                                       std::string wanted);
+/// The common ones: a map YAML, a CARMEN log, a TUM trajectory (or, with `log_ok`, a
+/// corrected CARMEN log), a filter configuration, a relations file.
+[[nodiscard]] CLI::Validator map_file();
+[[nodiscard]] CLI::Validator log_file();
+[[nodiscard]] CLI::Validator trajectory_file(bool log_ok);
+[[nodiscard]] CLI::Validator filter_file();
+[[nodiscard]] CLI::Validator relations_file();
+
+/// A length with an optional unit ("5", "5mm", "0.5cm", "0.005m"), converted to `unit`
+/// ("mm" or "m"): a bare number is already in `unit`, which the option's help says.
+[[nodiscard]] CLI::Validator length_in(const std::string& unit);
 
 /// CLI11 checks with short messages ("must be > 0" rather than CLI11's range dump).
 [[nodiscard]] CLI::Validator positive();

@@ -29,7 +29,8 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 struct RangeOptions {
   std::string log;
   std::size_t beam = 0;
-  int experiments = 1;
+  int experiments = 1;  ///< --log's default; --simulate's is sim.experiments unless given
+  CLI::Option* experiments_opt = nullptr;
   bool simulate = false;
   sims::FlatSurfaceExperiment sim{};
   double incidence_deg = 0.0;
@@ -52,11 +53,56 @@ struct CalibrateOptions {
   EdgeOptions edge;
 };
 
-/// Scans of a log as ranges; the angular step of the first one.
+/// How far the robot moved during a log, from its odometry and the scans' poses: metres and
+/// radians away from where it started.
+struct Motion {
+  double metres = 0.0;
+  double radians = 0.0;
+};
+
+Motion log_motion(const io::CarmenLog& log) {
+  Motion m;
+  std::vector<Pose2> odom, laser;
+  for (const auto& r : log.odometry) odom.push_back(r.pose);
+  for (const auto& s : log.scans) {
+    if (!s.has_poses) continue;
+    odom.push_back(s.odom_pose);
+    laser.push_back(s.laser_pose);
+  }
+  for (const auto* track : {&odom, &laser}) {
+    if (track->empty()) continue;
+    const Pose2& a = track->front();
+    for (const Pose2& p : *track) {
+      m.metres = std::max(m.metres, std::hypot(p.x - a.x, p.y - a.y));
+      m.radians = std::max(m.radians, std::abs(wrap_angle(p.theta - a.theta)));
+    }
+  }
+  return m;
+}
+
+/// Pooled lag-1 autocorrelation of the readings around each experiment's own mean: ~0 for
+/// sensor noise, near 1 when the range drifts (the robot or the scene moving).
+double lag1_autocorrelation(const std::vector<std::vector<double>>& experiments) {
+  double num = 0.0, den = 0.0;
+  for (const auto& e : experiments) {
+    if (e.size() < 2) continue;
+    double mean = 0.0;
+    for (const double v : e) mean += v;
+    mean /= static_cast<double>(e.size());
+    for (std::size_t i = 0; i < e.size(); ++i) {
+      den += (e[i] - mean) * (e[i] - mean);
+      if (i + 1 < e.size()) num += (e[i] - mean) * (e[i + 1] - mean);
+    }
+  }
+  return den > 0.0 ? num / den : 0.0;
+}
+
+/// Scans of a log as ranges; the angular step of the first one; how far the robot moved.
 std::vector<std::vector<float>> log_ranges(const std::string& path, double* step, double* rmin,
-                                           double* rmax) {
+                                           double* rmax, Motion* motion = nullptr) {
   const io::CarmenLog log = read_log(path, {}, false);
-  if (log.scans.empty()) throw io::UsageError(path + ": no laser scans");
+  if (motion) *motion = log_motion(log);
+  if (log.scans.empty()) throw std::runtime_error(path + ": no laser scans");
   std::vector<std::vector<float>> scans;
   scans.reserve(log.scans.size());
   for (const auto& s : log.scans) scans.push_back(s.scan.ranges);
@@ -72,6 +118,7 @@ int run_range(const RangeOptions& o) {
   if (o.simulate) {
     sims::FlatSurfaceExperiment x = o.sim;
     x.incidence = o.incidence_deg * kDeg;
+    if (o.experiments_opt->count() > 0) x.experiments = o.experiments;
     experiments = sims::simulate_flat_surface(x);
     char buf[256];
     std::snprintf(buf, sizeof buf, "simulated %s at %.2f m, incidence %.1f deg", x.material.c_str(),
@@ -85,7 +132,15 @@ int run_range(const RangeOptions& o) {
     }
   } else {
     double step = 0, rmin = 0, rmax = 0;
-    const auto scans = log_ranges(o.log, &step, &rmin, &rmax);
+    Motion motion;
+    const auto scans = log_ranges(o.log, &step, &rmin, &rmax, &motion);
+    if (motion.metres > 0.01 || motion.radians > 0.5 * kDeg) {
+      std::fprintf(stderr,
+                   "pgmcl: warning: %s: the robot moved %.3f m and %.1f deg during the log; "
+                   "calibrate range wants a stationary scanner, so sigma_x below measures the "
+                   "motion as much as the sensor\n",
+                   o.log.c_str(), motion.metres, motion.radians / kDeg);
+    }
     const std::vector<double> r = sims::beam_readings(scans, o.beam, rmin, rmax);
     const auto k = static_cast<std::size_t>(o.experiments);
     if (r.size() < 2 * k) {
@@ -101,12 +156,22 @@ int run_range(const RangeOptions& o) {
     what = o.log + ", beam " + std::to_string(o.beam);
   }
   const sims::RangeSigmaEstimate est = sims::estimate_range_sigma(experiments);
+  // Sensor noise is white and millimetres wide; a drifting range is the scene moving.
+  const double rho = lag1_autocorrelation(experiments);
+  if (!o.simulate && (rho > 0.5 || est.sigma > 0.1)) {
+    std::fprintf(stderr,
+                 "pgmcl: warning: %s: the readings are not a static scene's (lag-1 "
+                 "autocorrelation %.2f, sigma %.1f mm; sensor noise gives about 0 and a few "
+                 "mm): the scanner or what it sees moved, so this sigma is not the sensor's\n",
+                 o.log.c_str(), rho, est.sigma * 1e3);
+  }
   std::printf("calibrate range: %s\n", what.c_str());
   std::printf("  readings         %zu in %zu experiment(s), %zu degrees of freedom\n", est.readings,
               est.experiments, est.dof);
   std::printf("  mean range       %.4f m\n", est.mean);
   std::printf("  sigma_x          %.4f mm  (standard error %.4f mm)\n", est.sigma * 1e3,
               est.standard_error * 1e3);
+  std::printf("  lag-1 autocorr.  %.3f (static scene: about 0)\n", rho);
   return 0;
 }
 
@@ -161,7 +226,7 @@ int run_edge(const EdgeOptions& o) {
     pairs += runs[r].empty() ? 0 : runs[r].size() - 1;
     all.insert(all.end(), runs[r].begin(), runs[r].end());
   }
-  if (pairs == 0) throw io::UsageError("calibrate edge: need at least two scans");
+  if (pairs == 0) throw std::runtime_error("calibrate edge: need at least two scans");
   const double from_changes = sims::sigma_beams_from_changes(changes, pairs, fraction);
   const double mle = sims::sigma_beams_mle(all, edge);
   const sims::AcrossBeamEstimate a = sims::across_beam_estimate(mle, step, distance);
@@ -184,11 +249,15 @@ Command add_calibrate_command(CLI::App& app) {
   RangeOptions& r = o->range;
   o->range_cmd = sub->add_subcommand("range", "Along-beam sigma from repeated readings");
   auto* rlog = o->range_cmd->add_option("--log", r.log, "Log of a stationary scanner")
-                   ->check(CLI::ExistingFile);
+                   ->check(CLI::ExistingFile)
+                   ->check(log_file());
   o->range_cmd->add_option("--beam", r.beam, "Beam index (with --log)")->capture_default_str();
-  o->range_cmd->add_option("--experiments", r.experiments, "Split the log into this many")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 100000));
+  r.experiments_opt =
+      o->range_cmd
+          ->add_option("--experiments", r.experiments,
+                       "Experiments: the log split into this many (default 1), or this many "
+                       "simulated (default 20)")
+          ->check(CLI::Range(1, 100000));
   auto* rsim = o->range_cmd->add_flag("--simulate", r.simulate, "Simulate the experiment");
   rsim->excludes(rlog);
   o->range_cmd->add_option("--material", r.sim.material, "Table 2 surface (simulation)")
@@ -207,7 +276,8 @@ Command add_calibrate_command(CLI::App& app) {
   EdgeOptions& e = o->edge;
   o->edge_cmd = sub->add_subcommand("edge", "Across-beam sigma from edge-boundary jitter");
   auto* elog = o->edge_cmd->add_option("--log", e.log, "Log of a stationary scanner at an edge")
-                   ->check(CLI::ExistingFile);
+                   ->check(CLI::ExistingFile)
+                   ->check(log_file());
   o->edge_cmd->add_option("--first-beam", e.first_beam, "A beam on the object (with --log)");
   o->edge_cmd->add_option("--split-range", e.split_range,
                           "Metres: shorter readings are on the object (with --log)");

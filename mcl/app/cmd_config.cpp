@@ -1,14 +1,17 @@
 /// pgmcl config: the filter configuration after --config and --set, as the YAML every run
 /// writes next to its results, or (--reference) every key with its default, unit and
-/// allowed values as Markdown (configs/reference.md).
+/// allowed values as Markdown (configs/reference.md), or (--amcl) the AMCL parameter names
+/// and their pgmcl keys (the table in configs/README.md).
 
 #include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "app_util.hpp"
 #include "commands.hpp"
 #include "pgmcl/config/config_yaml.hpp"
+#include "pgmcl/config/key_hints.hpp"
 
 namespace pgmcl::app {
 namespace {
@@ -17,9 +20,14 @@ struct ConfigOptions {
   std::string config;
   std::vector<std::string> sets;
   bool reference = false;
+  bool amcl = false;
 };
 
 int run_config(const ConfigOptions& o) {
+  if (o.amcl) {
+    std::cout << io::amcl_parameter_table();
+    return 0;
+  }
   if (o.reference) {
     std::cout << io::localizer_config_reference();
     return 0;
@@ -37,12 +45,19 @@ Command add_config_command(CLI::App& app) {
   auto o = std::make_shared<ConfigOptions>();
   CLI::App* sub = app.add_subcommand(
       "config", "Print the filter configuration after --config and --set, or the key reference");
-  sub->add_option("--config", o->config, "Filter configuration YAML")->check(CLI::ExistingFile);
+  sub->add_option("--config", o->config, "Filter configuration YAML")
+      ->check(CLI::ExistingFile)
+      ->check(filter_file());
   sub->add_option("--set", o->sets, "Override a config key, e.g. filter.particles=2000")
       ->take_all();
   auto* ref = sub->add_flag("--reference", o->reference,
                             "Print every key with its default, unit and allowed values (Markdown)");
   ref->excludes(sub->get_option("--config"))->excludes(sub->get_option("--set"));
+  sub->add_flag("--amcl", o->amcl,
+                "Print the table of AMCL (nav2_amcl, ROS 1 amcl) parameters and their pgmcl keys")
+      ->excludes(ref)
+      ->excludes(sub->get_option("--config"))
+      ->excludes(sub->get_option("--set"));
   return {sub, [o] { return run_config(*o); }};
 }
 

@@ -79,10 +79,11 @@ int run_localize(const LocalizeOptions& o) {
     job.init.kind = InitialBelief::Kind::kTruth;
   }
   check_job(job, o.map, "--init");
-  job.title = std::filesystem::path(o.log).filename().string();
+  job.map_name = o.map;
+  job.title = run_title(o.out, o.log);
   job.quiet = o.quiet;
   const io::RunMetrics m = run_localization(job, outputs, files);
-  std::printf("%s\n", summary_line(m, o.out).c_str());
+  std::printf("%s\n", summary_line(m, o.out, job.config).c_str());
   return finish_exit_code(m, o.out);
 }
 
@@ -93,11 +94,15 @@ Command add_localize_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("localize", "Localise a logged robot on a map");
   sub->add_option("--map", o->map, "Map YAML (ROS map_server)")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(CLI::ExistingFile)
+      ->check(map_file());
   sub->add_option("--log", o->log, "CARMEN log (.log, .clf, optionally .gz)")
       ->required()
-      ->check(CLI::ExistingFile);
-  sub->add_option("--config", o->config, "Filter configuration YAML")->check(CLI::ExistingFile);
+      ->check(CLI::ExistingFile)
+      ->check(log_file());
+  sub->add_option("--config", o->config, "Filter configuration YAML")
+      ->check(CLI::ExistingFile)
+      ->check(filter_file());
   sub->add_option("--set", o->sets, "Override a config key, e.g. filter.particles=2000")
       ->take_all();
   o->init_opt =
@@ -105,9 +110,11 @@ Command add_localize_command(CLI::App& app) {
   auto* global = sub->add_flag("--global", o->global, "Start with global localisation");
   o->init_opt->excludes(global);
   sub->add_option("--truth", o->truth, "Ground truth: TUM file or a corrected CARMEN log")
-      ->check(CLI::ExistingFile);
+      ->check(CLI::ExistingFile)
+      ->check(trajectory_file(true));
   auto* rel = sub->add_option("--relations", o->relations, "Benchmark relations file")
-                  ->check(CLI::ExistingFile);
+                  ->check(CLI::ExistingFile)
+                  ->check(relations_file());
   sub->add_option("--time-offset", o->time_offset,
                   "Seconds added to log stamps to match the relations")
       ->needs(rel);

@@ -144,14 +144,17 @@ Command add_map_command(CLI::App& app) {
       app.add_subcommand("map", "Build an occupancy map from a log with known (corrected) poses");
   sub->add_option("--log", o->log, "Corrected CARMEN log (.gz ok)")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(CLI::ExistingFile)
+      ->check(log_file());
   sub->add_option("--out", o->out, "Output map YAML (the image is written next to it)")->required();
   sub->add_option("--image", o->image,
                   "Image file name next to the YAML (.pgm, .pgm.gz or .png; default <stem>.pgm)");
   auto& m = o->mapping;
-  sub->add_option("--resolution", m.resolution, "Metres per cell")
+  sub->add_option("--resolution", m.resolution, "Metres per cell (or with a unit: 5cm, 50mm)")
       ->capture_default_str()
-      ->check(positive());
+      ->transform(length_in("m"))
+      ->check(positive())
+      ->type_name("M");
   sub->add_option("--margin", m.margin, "Metres of border around the data")
       ->capture_default_str()
       ->check(non_negative());

@@ -234,7 +234,10 @@ Command add_perturb_command(CLI::App& app) {
   auto o = std::make_shared<PerturbOptions>();
   CLI::App* sub = app.add_subcommand(
       "perturb", "Make a raw log with noisy odometry (and stress conditions) from a corrected log");
-  sub->add_option("--log", o->log, "Corrected CARMEN log")->required()->check(CLI::ExistingFile);
+  sub->add_option("--log", o->log, "Corrected CARMEN log")
+      ->required()
+      ->check(CLI::ExistingFile)
+      ->check(log_file());
   sub->add_option("--odom-noise", o->text.noise,
                   "A1,A2,A3,A4: Probabilistic Robotics Table 5.6 alphas, variance form "
                   "(rad^2/rad^2, rad^2/m^2, m^2/m^2, m^2/rad^2)")

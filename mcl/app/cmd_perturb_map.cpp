@@ -177,7 +177,10 @@ Command add_perturb_map_command(CLI::App& app) {
   auto o = std::make_shared<PerturbMapOptions>();
   CLI::App* sub = app.add_subcommand(
       "perturb-map", "Make a degraded copy of a map (blurred, thickened or missing walls)");
-  sub->add_option("--map", o->map, "Input ROS map YAML")->required()->check(CLI::ExistingFile);
+  sub->add_option("--map", o->map, "Input ROS map YAML")
+      ->required()
+      ->check(CLI::ExistingFile)
+      ->check(map_file());
   sub->add_option("--out", o->out,
                   "Output map YAML; the image goes next to it (<stem>.pgm, or <stem>.png for "
                   "a scale map)")

@@ -2,6 +2,7 @@
 /// (schema: mcl/io/include/pgmcl/config/experiment_yaml.hpp). A simulated log and its truth
 /// are kept in the output directory (sim.log.gz, truth.tum) so the run can be replayed.
 
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -20,6 +21,7 @@
 #include "pgmcl/io/tum.hpp"
 #include "pgmcl/io/values.hpp"
 #include "pgmcl/map_io/map_io.hpp"
+#include "pgmcl/mcl/config_schema.hpp"
 #include "pgmcl/sims/scenario.hpp"
 
 namespace pgmcl::app {
@@ -29,8 +31,31 @@ struct RunOptions {
   std::string experiment;
   std::string out;
   std::vector<std::string> sets;
+  int threads = 1;
+  std::uint64_t seed = 42;
+  CLI::Option* threads_opt = nullptr;
+  CLI::Option* seed_opt = nullptr;
   bool quiet = false;
 };
+
+/// The simulated moving obstacles over the run, for overlay.png.
+std::vector<ObstacleDrawing> obstacle_drawings(const sims::Scenario& sc,
+                                               const sims::SimulationLog& sim) {
+  std::vector<ObstacleDrawing> out;
+  const double t0 = sim.records.front().stamp, t1 = sim.records.back().stamp;
+  auto path = [&](const sims::ObstaclePath& p, double yaw) {
+    std::vector<Pose2> pts;
+    for (double t = t0; t <= t1 + 1e-9; t += 0.1) {
+      const sims::Point2 q = p.position_at(t);
+      pts.push_back({q.x, q.y, yaw});
+    }
+    return pts;
+  };
+  for (const sims::DiscObstacle& d : sc.discs) out.push_back({path(d.path, 0.0), d.radius, 0, 0});
+  for (const sims::BoxObstacle& b : sc.boxes)
+    out.push_back({path(b.path, b.yaw), 0.0, b.half_length, b.half_width});
+  return out;
+}
 
 InitialBelief to_belief(const io::Experiment& e, bool have_truth) {
   const io::ExperimentInit& init = e.init;
@@ -62,9 +87,13 @@ InitialBelief to_belief(const io::Experiment& e, bool have_truth) {
 }
 
 int run_run(const RunOptions& o) {
+  // Precedence as in localize: the file < --set (in order) < --threads / --seed.
   std::vector<std::string> sets = o.sets;
   if (!o.out.empty()) sets.push_back("out=" + o.out);
+  if (o.threads_opt->count() > 0) sets.push_back("threads=" + std::to_string(o.threads));
+  if (o.seed_opt->count() > 0) sets.push_back("seed=" + std::to_string(o.seed));
   const io::Experiment e = io::read_experiment(o.experiment, sets);
+  for (const std::string& n : e.notes) std::fprintf(stderr, "pgmcl: note: %s\n", n.c_str());
 
   OutputFiles files;
   files.input(o.experiment, "experiment");
@@ -89,12 +118,14 @@ int run_run(const RunOptions& o) {
   job.quiet = o.quiet;
   job.init = to_belief(e, !e.scenario.empty() || !e.truth.empty());
   maps::OccupancyGrid map, world;
+  std::string scenario_map;
   io::CarmenLog log;
   if (!e.scenario.empty()) {
     const io::ScenarioFile sf = io::read_scenario_file(e.scenario, world);
+    scenario_map = sf.map_path;
     files.input(sf.map_path, "the scenario's map");
     files.input(map_image_path(sf.map_path), "the scenario's map image");
-    const sims::SimulationLog sim = sims::simulate(sf.scenario, world);
+    const sims::SimulationLog sim = sims::simulate(sf.scenario, world, e.filter.threads);
     check_interrupt();
     if (sim.records.empty())
       throw std::runtime_error(e.scenario + ": simulation produced no scans");
@@ -103,6 +134,8 @@ int run_run(const RunOptions& o) {
     log = io::to_carmen_log(sim);
     job.log_name = e.scenario + " (simulated)";
     job.truth = io::sim_truth_trajectory(sim);
+    job.obstacles = obstacle_drawings(sf.scenario, sim);
+    job.events = sim.kidnap_times;
     if (!o.quiet) {
       std::fprintf(stderr, "run: %s: simulated %zu scans from %s\n", e.name.c_str(),
                    sim.records.size(), e.scenario.c_str());
@@ -118,7 +151,9 @@ int run_run(const RunOptions& o) {
     map = maps::load_map(e.map, &report);
     for (const auto& w : report.warnings) warn(job, w);
     job.map = &map;
+    job.map_name = e.map;
   } else {
+    job.map_name = scenario_map;
     job.map = &world;
   }
   job.log = &log;
@@ -128,7 +163,7 @@ int run_run(const RunOptions& o) {
   }
   check_job(job, map_name, e.path + ": init");
   const io::RunMetrics m = run_localization(job, outputs, files);
-  std::printf("%s: %s\n", e.name.c_str(), summary_line(m, e.out).c_str());
+  std::printf("%s: %s\n", e.name.c_str(), summary_line(m, e.out, job.config).c_str());
   return finish_exit_code(m, e.out);
 }
 
@@ -139,11 +174,17 @@ Command add_run_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("run", "Run an experiment file (map + data + filter)");
   sub->add_option("experiment", o->experiment, "Experiment YAML")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(CLI::ExistingFile)
+      ->check(file_kind({io::FileKind::kExperiment, io::FileKind::kOtherYaml},
+                        "an experiment file (map + data + filter; configs/experiments/)"));
   sub->add_option("--out", o->out, "Output directory (default: the experiment's `out`)");
   sub->add_option("--set", o->sets,
-                  "Override an experiment key: filter.<key>=v, name, map, out, init, data.*")
+                  "Override a key: a filter key as in localize (filter.particles=500), or name, "
+                  "map, out, init (x,y,theta[,sx,sy,stheta] or YAML), data.*")
       ->take_all();
+  o->threads_opt = sub->add_option("--threads", o->threads, "OpenMP threads (0 = OpenMP default)")
+                       ->check(whole_number(0, config_schema::kMaxThreads));
+  o->seed_opt = add_seed_option(*sub, o->seed, "Random seed of the filter");
   sub->add_flag("--quiet", o->quiet, "No progress output");
   return {sub, [o] { return run_run(*o); }};
 }

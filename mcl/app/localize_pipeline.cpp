@@ -15,38 +15,15 @@
 #include "pgmcl/io/errors.hpp"
 #include "pgmcl/io/tum.hpp"
 #include "pgmcl/io/values.hpp"
-#include "plot.hpp"
 #include "png_overlay.hpp"
 #include "progress.hpp"
 #include "run_checks.hpp"
+#include "run_pictures.hpp"
 
 namespace pgmcl::app {
 namespace {
 
 constexpr double kRadToDeg = 180.0 / std::numbers::pi;
-constexpr std::size_t kMaxDrawnParticles = 5000;
-
-/// Position and heading error over time, one panel each.
-void write_error_png(const std::string& path, const io::AteResult& ate, double t0) {
-  PlotSeries pos{"position error", {}, {}, colors::kRed};
-  PlotSeries head{"heading error", {}, {}, colors::kBlue};
-  for (const io::PoseError& e : ate.errors) {
-    pos.x.push_back(e.stamp - t0);
-    pos.y.push_back(e.translation);
-    head.x.push_back(e.stamp - t0);
-    head.y.push_back(e.rotation_deg);
-  }
-  char title[160];
-  std::snprintf(title, sizeof title, "Position error (ATE RMSE %.3f m, max %.3f m)",
-                ate.translation.rms, ate.translation.max);
-  LinePlot p1{title, "time since first scan [s]", "metres", {pos}, 1000, 340, true};
-  std::snprintf(title, sizeof title, "Heading error (RMSE %.2f deg)", ate.heading.rms);
-  LinePlot p2{title, "time since first scan [s]", "degrees", {head}, 1000, 340, true};
-  Canvas c(1000, 680);
-  c.blit(render_line_plot(p1), 0, 0);
-  c.blit(render_line_plot(p2), 0, 340);
-  write_png(c, path);
-}
 
 void write_updates_csv(const std::string& path, const std::vector<replay::UpdateRow>& rows,
                        const io::Trajectory* truth) {
@@ -147,7 +124,14 @@ io::RunMetrics run_localization(const LocalizeJob& job, const LocalizeOutputs& o
     progress->update(done, extra);
   };
   hooks.stop = &stop_flag();
-  replay::ReplayResult run = replay::run(job, hooks);
+  replay::ReplayResult run = [&] {
+    try {
+      return replay::run(job, hooks);
+    } catch (const io::UsageError& e) {
+      // A log without odometry is bad input (exit 1), not a bad command line (exit 2).
+      throw std::runtime_error(e.what());
+    }
+  }();
   if (progress) progress->finish();
   for (const std::string& w : run.warnings) std::fprintf(stderr, "pgmcl: warning: %s\n", w.c_str());
   // The run's own warnings are in its metrics already; those found before it go first.
@@ -158,17 +142,23 @@ io::RunMetrics run_localization(const LocalizeJob& job, const LocalizeOutputs& o
   write_text_file(out.metrics, io::metrics_yaml(metrics));
   write_updates_csv(out.updates, run.rows, job.truth ? &*job.truth : nullptr);
   write_text_file(out.config, io::localizer_config_yaml(job.config));
-  std::vector<Pose2> est, truth_path, cloud;
+  std::vector<Pose2> est, truth_path;
   est.reserve(run.trajectory.size());
   for (const auto& t : run.trajectory) est.push_back(t.pose);
   if (job.truth) {
-    for (const auto& t : *job.truth) truth_path.push_back(t.pose);
+    io::Trajectory sorted = *job.truth;
+    io::sort_by_stamp(sorted);
+    for (const auto& t : sorted) truth_path.push_back(t.pose);
   }
-  const std::size_t stride = run.particles.size() / kMaxDrawnParticles + 1;
-  for (std::size_t i = 0; i < run.particles.size(); i += stride) cloud.push_back(run.particles[i]);
-  write_overlay_png(out.overlay, *job.map, OverlayData{truth_path, est, cloud, job.title});
-  if (run.ate && !run.ate->errors.empty()) {
-    write_error_png(out.error_png, *run.ate, run.trajectory.front().stamp);
+  const io::AteResult* ate = run.ate ? &*run.ate : nullptr;
+  const auto [search_begin, search_end] = search_range(run.trajectory, ate, job.events);
+  OverlayData overlay{truth_path,   est,        run.particles,
+                      run.weights,  job.title,  overlay_subtitle(run, job.log_name, job.map_name),
+                      search_begin, search_end, job.obstacles};
+  write_overlay_png(out.overlay, *job.map, overlay);
+  if (ate && !ate->errors.empty()) {
+    ErrorPlotData e{ate, run.rows, run.trajectory.front().stamp, job.events};
+    write_png(render_error_plot(e), out.error_png);
   } else {
     files.drop(out.error_png_target);
   }
@@ -187,16 +177,41 @@ int finish_exit_code(const io::RunMetrics& m, const std::string& out_dir) {
   return interrupted_exit_code();
 }
 
-std::string summary_line(const io::RunMetrics& m, const std::string& out_dir) {
+std::string run_title(const std::string& out_dir, const std::string& log) {
+  const std::filesystem::path out = std::filesystem::path(out_dir).lexically_normal();
+  std::string name = out.filename().string();
+  if (name.empty()) name = out.parent_path().filename().string();  // "dir/"
+  if (name.empty() || name == "." || name == "pgmcl-out")
+    name = std::filesystem::path(log).filename().string();
+  return name;
+}
+
+std::string summary_line(const io::RunMetrics& m, const std::string& out_dir,
+                         const LocalizerConfig& config) {
   char buf[512];
-  int n = std::snprintf(buf, sizeof buf,
-                        "localize: %zu updates (%zu skipped), %.2f ms/update (p95 %.2f), "
-                        "%zu..%zu particles (mean %.0f), %.0f beams, fit %.2f, converged on "
-                        "%.0f %% of updates",
-                        m.updates, m.skipped_updates, m.update_ms_mean, m.update_ms_p95,
-                        m.particles_min, m.particles_max, m.particles_mean, m.beams_used_mean,
-                        m.fit_mean, 100.0 * m.converged_fraction);
+  int n =
+      std::snprintf(buf, sizeof buf,
+                    "localize: %zu updates (%zu skipped), %.2f ms/update (median %.2f, p95 "
+                    "%.2f, max %.1f%s), particles %zu..%zu (mean %.0f)",
+                    m.updates, m.skipped_updates, m.update_ms_mean, m.update_ms_median,
+                    m.update_ms_p95, m.update_ms_max,
+                    m.update_ms_mean > m.update_ms_p95 ? "; a few slow updates lift the mean" : "",
+                    m.particles_min, m.particles_max, m.particles_mean);
   std::string s(buf, static_cast<std::size_t>(std::max(n, 0)));
+  // KLD-sampling, not filter.particles, decides the count once the filter runs: say so when
+  // the count moved, so "filter.particles=5000" running at 527 is no surprise.
+  const auto& kld = config.filter.kld;
+  if (kld.enabled && m.updates > 0 &&
+      (m.particles_min != m.particles_max || m.particles_min != config.filter.particles)) {
+    n = std::snprintf(buf, sizeof buf,
+                      " set by KLD-sampling within %zu..%zu (filter.particles %zu is only the "
+                      "start)",
+                      kld.min_particles, kld.max_particles, config.filter.particles);
+    s.append(buf, static_cast<std::size_t>(std::max(n, 0)));
+  }
+  n = std::snprintf(buf, sizeof buf, ", %.0f beams, fit %.2f, converged on %.0f %% of updates",
+                    m.beams_used_mean, m.fit_mean, 100.0 * m.converged_fraction);
+  s.append(buf, static_cast<std::size_t>(std::max(n, 0)));
   if (m.accuracy) {
     const auto& a = *m.accuracy;
     n = std::snprintf(buf, sizeof buf, "; ATE RMSE %.3f m (max %.3f), heading RMSE %.2f deg",

@@ -11,9 +11,10 @@
 ///   config.yaml     the effective LocalizerConfig (every field), to rerun exactly
 ///   updates.csv     one row per update: estimate, skip reason, converged, fit, N_eff,
 ///                   particles, competing hypotheses, and the error with ground truth
-///   overlay.png     map + ground truth + estimate + final particle cloud
-///   error.png       position and heading error over time (only with ground truth; an
-///                   earlier run's error.png is removed otherwise)
+///   overlay.png     map + ground truth + estimate + final particle cloud (png_overlay.hpp)
+///   error.png       position and heading error over time, lock-on, what the filter said
+///                   (only with ground truth, run_pictures.hpp; an earlier run's error.png
+///                   is removed otherwise)
 /// All of them or none: they are registered before the run (OutputFiles) and renamed into
 /// place together at the end. A SIGINT / SIGTERM stops the replay; the run so far is then
 /// written with `complete: false` in metrics.yaml.
@@ -25,6 +26,7 @@
 #include "output_files.hpp"
 #include "pgmcl/eval/metrics.hpp"
 #include "pgmcl/replay/replay.hpp"
+#include "png_overlay.hpp"
 
 namespace pgmcl::app {
 
@@ -44,8 +46,11 @@ struct LocalizeOutputs {
 
 /// A replay and what to say about it.
 struct LocalizeJob : replay::ReplayJob {
-  std::string title;  ///< overlay caption
+  std::string title;     ///< the run's name: overlay.png's title
+  std::string map_name;  ///< the map file, for overlay.png's header
   bool quiet = false;
+  std::vector<ObstacleDrawing> obstacles;  ///< simulated moving obstacles, for overlay.png
+  std::vector<double> events;              ///< kidnap stamps (simulated), for error.png
   /// Warnings found before the run (log, map, start), already printed; metrics.yaml lists
   /// them with the run's own.
   std::vector<std::string> warnings;
@@ -74,7 +79,13 @@ void check_job(LocalizeJob& job, const std::string& map_name, const std::string&
 /// it). Throws UsageError.
 [[nodiscard]] InitialBelief parse_init(const std::string& text);
 
-/// One line for the terminal: updates, timing, accuracy.
-[[nodiscard]] std::string summary_line(const io::RunMetrics& m, const std::string& out_dir);
+/// The name of a `localize` run: its output folder's name ("intel-global" for --out
+/// out/intel-global), or the log's file name for the default folder.
+[[nodiscard]] std::string run_title(const std::string& out_dir, const std::string& log);
+
+/// One line for the terminal: updates, timing (mean, median, p95, max), particle counts and
+/// whether KLD-sampling set them, accuracy and lock-on.
+[[nodiscard]] std::string summary_line(const io::RunMetrics& m, const std::string& out_dir,
+                                       const LocalizerConfig& config);
 
 }  // namespace pgmcl::app

@@ -118,6 +118,42 @@ void Canvas::polyline(std::span<const PixelPoint> points, Rgb c, double width) n
   if (points.size() == 1) line(points[0], points[0], c, width);
 }
 
+void Canvas::dashed_line(PixelPoint a, PixelPoint b, Rgb c, double width, double dash,
+                         double gap) noexcept {
+  const double len = std::hypot(b.x - a.x, b.y - a.y);
+  if (!std::isfinite(len) || len > 64.0 * 4.0 * (width_ + height_)) return;
+  const double period = std::max(dash, 1.0) + std::max(gap, 0.0);
+  for (double s = 0.0; s < len; s += period) {
+    const double e = std::min(len, s + std::max(dash, 1.0));
+    const double t0 = s / len, t1 = e / len;
+    line({a.x + t0 * (b.x - a.x), a.y + t0 * (b.y - a.y)},
+         {a.x + t1 * (b.x - a.x), a.y + t1 * (b.y - a.y)}, c, width);
+  }
+}
+
+void Canvas::ring(double cx, double cy, double radius, Rgb c, double width) noexcept {
+  if (!std::isfinite(cx) || !std::isfinite(cy) || !(radius > 0.0)) return;
+  const double outer = radius + width / 2.0, inner = std::max(0.0, radius - width / 2.0);
+  if (cx + outer < -1.0 || cy + outer < -1.0 || cx - outer > width_ || cy - outer > height_) return;
+  for (int y = static_cast<int>(std::floor(cy - outer)); y <= static_cast<int>(cy + outer); ++y) {
+    for (int x = static_cast<int>(std::floor(cx - outer)); x <= static_cast<int>(cx + outer); ++x) {
+      const double d2 = (x - cx) * (x - cx) + (y - cy) * (y - cy);
+      if (d2 <= outer * outer && d2 >= inner * inner) set(x, y, c);
+    }
+  }
+}
+
+void Canvas::frame_rect(int x0, int y0, int x1, int y1, Rgb c, int width) noexcept {
+  if (x0 > x1) std::swap(x0, x1);
+  if (y0 > y1) std::swap(y0, y1);
+  for (int k = 0; k < std::max(width, 1); ++k) {
+    fill_rect(x0 + k, y0 + k, x1 - k, y0 + k, c);
+    fill_rect(x0 + k, y1 - k, x1 - k, y1 - k, c);
+    fill_rect(x0 + k, y0 + k, x0 + k, y1 - k, c);
+    fill_rect(x1 - k, y0 + k, x1 - k, y1 - k, c);
+  }
+}
+
 void Canvas::arrow(PixelPoint tail, double angle, double length, Rgb c, double width) noexcept {
   // Screen y points down, so a counter-clockwise angle has a negative y component.
   const PixelPoint tip{tail.x + length * std::cos(angle), tail.y - length * std::sin(angle)};

@@ -28,6 +28,7 @@ inline constexpr Rgb kGreen{20, 160, 40};
 inline constexpr Rgb kBlue{30, 80, 220};
 inline constexpr Rgb kOrange{255, 140, 0};
 inline constexpr Rgb kPurple{150, 40, 170};
+inline constexpr Rgb kPaleGrey{242, 242, 242};
 }  // namespace colors
 
 /// A point in pixel coordinates (fractional).
@@ -59,6 +60,13 @@ class Canvas {
   /// Straight segment of the given width (pixels, >= 1), round caps.
   void line(PixelPoint a, PixelPoint b, Rgb c, double width = 1.0) noexcept;
   void polyline(std::span<const PixelPoint> points, Rgb c, double width = 1.0) noexcept;
+  /// A segment drawn as dashes of `dash` pixels separated by `gap` pixels.
+  void dashed_line(PixelPoint a, PixelPoint b, Rgb c, double width = 1.0, double dash = 6.0,
+                   double gap = 4.0) noexcept;
+  /// Circle outline of the given radius and line width (pixels).
+  void ring(double cx, double cy, double radius, Rgb c, double width = 1.0) noexcept;
+  /// Outline of the inclusive rectangle [x0, x1] x [y0, y1], `width` pixels thick inwards.
+  void frame_rect(int x0, int y0, int x1, int y1, Rgb c, int width = 1) noexcept;
   /// Arrow from `tail` of `length` pixels in image direction `angle` (radians, measured
   /// counter-clockwise as seen on screen, i.e. y up), with a head a third of its length.
   void arrow(PixelPoint tail, double angle, double length, Rgb c, double width = 1.0) noexcept;

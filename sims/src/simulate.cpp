@@ -5,6 +5,10 @@
 
 #include "pgmcl/sims/scenario.hpp"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace pgmcl::sims {
 
 void render_scan(const Scene& scene, const SensorProfile& profile, const Pose2& sensor,
@@ -26,7 +30,7 @@ void render_scan(const Scene& scene, const SensorProfile& profile, const Pose2& 
   }
 }
 
-SimulationLog simulate(const Scenario& sc, const maps::OccupancyGrid& grid) {
+SimulationLog simulate(const Scenario& sc, const maps::OccupancyGrid& grid, int threads) {
   const std::vector<MotionSample> motion = simulate_motion(sc, grid);  // validates
   const std::vector<Pose2> odom = simulate_odometry(sc, motion);
   const RayCaster caster(grid, sc.raycast);
@@ -42,7 +46,10 @@ SimulationLog simulate(const Scenario& sc, const maps::OccupancyGrid& grid) {
   // Scans are independent given the motion: one RNG stream per scan keeps the result
   // independent of the thread count. Nothing in the loop throws (names were validated).
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 4)
+  const int team = threads > 0 ? threads : omp_get_max_threads();
+#pragma omp parallel for schedule(dynamic, 4) num_threads(team)
+#else
+  (void)threads;
 #endif
   for (std::ptrdiff_t k = 0; k < n; ++k) {
     const auto i = static_cast<std::size_t>(k);

@@ -67,6 +67,50 @@ TEST(CliCalibrate, RangeSigmaFromALog) {
   EXPECT_NE(r.out.find("2000 in 4 experiment(s)"), std::string::npos) << r.out;
 }
 
+TEST(CliCalibrate, SimulateRunsTheExperimentsAskedFor) {
+  TempDir dir("cli_calibrate_sim_count");
+  RunResult r = run_pgmcl("calibrate range --simulate --experiments 12 --readings 50", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("600 in 12 experiment(s)"), std::string::npos) << r.out;
+  r = run_pgmcl("calibrate range --simulate --readings 50", dir);  // Dekan et al.'s 20
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("1000 in 20 experiment(s)"), std::string::npos) << r.out;
+}
+
+TEST(CliCalibrate, AMovingRobotIsCalledOut) {
+  TempDir dir("cli_calibrate_moving");
+  // The scanner drives away from a wall at 5 cm per scan: beam 3's range grows steadily.
+  io::CarmenLog log;
+  const io::BeamLayout layout = io::sick_beam_layout(10);
+  Rng rng(3);
+  for (int k = 0; k < 400; ++k) {
+    io::CarmenScan s;
+    s.stamp = 0.1 * k;
+    s.scan.angle_min = layout.angle_min;
+    s.scan.angle_increment = layout.angle_increment;
+    s.scan.range_max = 30.0;
+    for (int i = 0; i < 10; ++i)
+      s.scan.ranges.push_back(static_cast<float>(2.0 + 0.05 * k + rng.normal(0.005)));
+    s.laser_pose = s.odom_pose = {-0.05 * k, 0.0, 0.0};
+    log.scans.push_back(s);
+  }
+  log.params["robot_front_laser_max"] = "30";
+  io::write_carmen(dir.file("moving.log"), log);
+  const RunResult r = run_pgmcl("calibrate range --log moving.log --beam 3", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("pgmcl: warning: moving.log: the robot moved 19.950 m"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("the readings are not a static scene's (lag-1 autocorrelation 0.99"),
+            std::string::npos)
+      << r.err;
+  // A static scanner: no warning.
+  write_static_log(dir.file("static.log"), 400,
+                   [](int, int, Rng& g) { return 2.0 + g.normal(0.005); });
+  const RunResult ok = run_pgmcl("calibrate range --log static.log --beam 3", dir);
+  ASSERT_EQ(ok.code, 0) << ok.err;
+  EXPECT_EQ(ok.err.find("warning"), std::string::npos) << ok.err;
+}
+
 TEST(CliCalibrate, EdgeSigmaFromALogWithKnownJitter) {
   TempDir dir("cli_calibrate_log_edge");
   // Beam j is on the object (1 m) iff j + e < 4.3, e ~ N(0, 0.4 steps); else background 3 m.

@@ -14,15 +14,32 @@ TEST(CliConfigCommand, ReferenceFileIsTheCurrentGeneratedTable) {
   const RunResult r = run_pgmcl("config --reference", dir);
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string committed = read_text(PGMCL_SOURCE_DIR "/configs/reference.md");
-  EXPECT_EQ(r.out, committed)
-      << "configs/reference.md is stale: regenerate it with "
-         "`pgmcl config --reference > configs/reference.md`";
+  EXPECT_EQ(r.out, committed) << "configs/reference.md is stale: regenerate it with "
+                                 "`pgmcl config --reference > configs/reference.md`";
   // Every key of the YAML the runs write is in the table.
   const RunResult yaml = run_pgmcl("config", dir);
   ASSERT_EQ(yaml.code, 0) << yaml.err;
   for (const char* key : {"`filter.kld.max_particles`", "`hypotheses.search.leaf_size`",
                           "`likelihood.table.kind`", "`seed`"})
     EXPECT_NE(r.out.find(key), std::string::npos) << key;
+}
+
+TEST(CliConfigCommand, TheAmclTableInConfigsReadmeIsTheCurrentOne) {
+  const TempDir dir("pgmcl-config-amcl");
+  const RunResult r = run_pgmcl("config --amcl", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("| AMCL | pgmcl | notes |\n", 0), 0u) << r.out;
+  const std::string readme = read_text(PGMCL_SOURCE_DIR "/configs/README.md");
+  EXPECT_NE(readme.find(r.out), std::string::npos)
+      << "configs/README.md's AMCL table is stale: replace it with `pgmcl config --amcl`";
+  // An AMCL name in a filter file is an error that names the pgmcl key.
+  write_text(dir.file("amcl.yaml"), "filter:\n  max_particles: 5000\n");
+  const RunResult bad = run_pgmcl("config --config amcl.yaml", dir);
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_NE(bad.err.find("amcl.yaml:2: filter.max_particles: unknown key: AMCL's max_particles "
+                         "is pgmcl's filter.kld.max_particles"),
+            std::string::npos)
+      << bad.err;
 }
 
 TEST(CliConfigCommand, PrintsTheConfigAfterFileAndOverrides) {
@@ -46,8 +63,7 @@ TEST(CliConfigCommand, TyposNameTheNearestKey) {
   write_text(dir.file("f.yaml"), "filtr:\n  particles: 5\n");
   r = run_pgmcl("config --config f.yaml", dir);
   EXPECT_EQ(r.code, 1);
-  EXPECT_NE(r.err.find("f.yaml:1: filtr: unknown key (did you mean 'filter'?)"),
-            std::string::npos)
+  EXPECT_NE(r.err.find("f.yaml:1: filtr: unknown key (did you mean 'filter'?)"), std::string::npos)
       << r.err;
   // Nothing near: no suggestion.
   r = run_pgmcl("config --set filter.zzzzzzzz=5", dir);

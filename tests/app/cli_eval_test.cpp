@@ -75,7 +75,7 @@ TEST(CliEval, BadTrajectoryLineNamesFileLineAndField) {
   EXPECT_NE(r.err.find("ty"), std::string::npos) << r.err;
 }
 
-TEST(CliEval, NoOverlapInTimeIsAnError) {
+TEST(CliEval, NoOverlapInTimeIsAnErrorBeforeAnyFigure) {
   TempDir dir("cli_eval_overlap");
   io::Trajectory late = circle(10);
   for (auto& p : late) p.stamp += 1000.0;
@@ -84,6 +84,85 @@ TEST(CliEval, NoOverlapInTimeIsAnError) {
   const RunResult r = run_pgmcl("eval --estimate est.tum --truth truth.tum", dir);
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("no estimate pose matched"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--truth-offset"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out.find("ate_rmse_m"), std::string::npos) << r.out;  // no "ate_rmse_m 0"
+}
+
+TEST(CliEval, APartialMatchWarnsAndReportsTheMatchedFraction) {
+  // 100 estimate poses, the last 40 past the truth's end: 60 are scored.
+  TempDir dir("cli_eval_partial");
+  const io::Trajectory est = circle(100);
+  const io::Trajectory truth(est.begin(), est.begin() + 60);
+  io::write_tum(dir.file("truth.tum"), truth);
+  io::write_tum(dir.file("est.tum"), est);
+  const RunResult r = run_pgmcl("eval --estimate est.tum --truth truth.tum --out m.yaml", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("pgmcl: warning: est.tum: only 60 of 100 estimate poses (60 %) have a "
+                       "ground-truth pose"),
+            std::string::npos)
+      << r.err;
+  const YAML::Node y = YAML::LoadFile(dir.file("m.yaml"));
+  EXPECT_EQ(y["truth_matched"].as<int>(), 60);
+  EXPECT_DOUBLE_EQ(y["truth_matched_fraction"].as<double>(), 0.6);
+  // A whole match: no warning, fraction 1.
+  const RunResult whole =
+      run_pgmcl("eval --estimate truth.tum --truth truth.tum --out w.yaml", dir);
+  ASSERT_EQ(whole.code, 0) << whole.err;
+  EXPECT_EQ(whole.err.find("warning"), std::string::npos) << whole.err;
+  EXPECT_EQ(YAML::LoadFile(dir.file("w.yaml"))["truth_matched_fraction"].as<double>(), 1.0);
+}
+
+TEST(CliEval, TimeOffsetWithoutRelationsAndToleranceShiftAndWidenTheTruthMatch) {
+  TempDir dir("cli_eval_offset");
+  const io::Trajectory truth = circle(100);
+  io::Trajectory est = truth;
+  for (auto& p : est) p.stamp += 0.2;  // the estimate's clock is 0.2 s ahead
+  io::write_tum(dir.file("truth.tum"), truth);
+  io::write_tum(dir.file("est.tum"), est);
+  RunResult r = run_pgmcl("eval --estimate est.tum --truth truth.tum --out a.yaml", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_GT(YAML::LoadFile(dir.file("a.yaml"))["ate_rmse_m"].as<double>(), 0.01);
+  for (const char* opt : {"--time-offset -0.2", "--truth-offset -0.2"}) {
+    r = run_pgmcl(std::string("eval --estimate est.tum --truth truth.tum --out b.yaml ") + opt,
+                  dir);
+    ASSERT_EQ(r.code, 0) << opt << r.err;
+    const YAML::Node y = YAML::LoadFile(dir.file("b.yaml"));
+    EXPECT_NEAR(y["ate_rmse_m"].as<double>(), 0.0, 1e-9) << opt;
+    EXPECT_EQ(y["truth_matched"].as<int>(), 100) << opt;
+  }
+  // Truth every 2 s (gaps too long to interpolate), estimate 0.3 s after each truth pose:
+  // nothing within the default 0.05 s, everything within --tolerance 0.5.
+  io::Trajectory sparse, late;
+  for (int i = 0; i < 20; ++i) {
+    sparse.push_back({10.0 + 2.0 * i, {1.0 * i, 0.0, 0.0}});
+    late.push_back({10.3 + 2.0 * i, {1.0 * i, 0.0, 0.0}});
+  }
+  io::write_tum(dir.file("sparse.tum"), sparse);
+  io::write_tum(dir.file("late.tum"), late);
+  r = run_pgmcl("eval --estimate late.tum --truth sparse.tum", dir);
+  EXPECT_EQ(r.code, 1) << r.out;
+  r = run_pgmcl("eval --estimate late.tum --truth sparse.tum --tolerance 0.5 --out c.yaml", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(YAML::LoadFile(dir.file("c.yaml"))["truth_matched"].as<int>(), 20);
+}
+
+TEST(CliEval, SaysWhatLockOnAndConvergenceMean) {
+  // 10 m off for the first 10 poses, then 0.02 m: locked on at the 11th pose (5 s).
+  TempDir dir("cli_eval_lock");
+  const io::Trajectory truth = circle(100);
+  io::Trajectory est = truth;
+  for (int i = 0; i < 100; ++i) est[i].pose.x += i < 10 ? 10.0 : 0.02;
+  io::write_tum(dir.file("truth.tum"), truth);
+  io::write_tum(dir.file("est.tum"), est);
+  const RunResult r = run_pgmcl("eval --estimate est.tum --truth truth.tum", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("eval: locked on (within 1 m from then on) at 5.0 s"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("from then on ATE RMSE 0.020 m"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("converged_after_s 5.0: from then on every error is within 0.5 m and "
+                       "10 deg"),
+            std::string::npos)
+      << r.out;
 }
 
 }  // namespace

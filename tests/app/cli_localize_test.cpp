@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <thread>
 
 #include "cli_test_util.hpp"
 #include "pgmcl/io/carmen_writer.hpp"
@@ -58,6 +59,60 @@ TEST(CliLocalize, TracksTheSyntheticRoomAndWritesEveryOutput) {
   const YAML::Node c = YAML::LoadFile(dir.file("out/config.yaml"));
   EXPECT_EQ(c["filter"]["particles"].as<int>(), 300);
   EXPECT_EQ(c["seed"].as<int>(), 3);
+  // The summary gives the particle range and says KLD-sampling set it, and the update time
+  // as mean, median, p95 and max.
+  EXPECT_NE(r.out.find("particles " + std::to_string(m["particles_min"].as<int>()) + ".." +
+                       std::to_string(m["particles_max"].as<int>())),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find(") set by KLD-sampling within 100..20000 (filter.particles 300 is only the "
+                       "start)"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find(" ms/update (median "), std::string::npos) << r.out;
+  EXPECT_GE(m["update_ms_max"].as<double>(), m["update_ms_p95"].as<double>());
+  EXPECT_LE(m["update_ms_median"].as<double>(), m["update_ms_p95"].as<double>());
+  // Without KLD the count is fixed and nothing is said about it.
+  const RunResult fixed = run_pgmcl(std::string("localize --map room.yaml --log raw.log --truth "
+                                                "truth.tum --out out2 --quiet --set "
+                                                "filter.kld.enabled=false") +
+                                        kSmall,
+                                    dir);
+  ASSERT_EQ(fixed.code, 0) << fixed.err;
+  EXPECT_NE(fixed.out.find("particles 300..300 (mean 300)"), std::string::npos) << fixed.out;
+  EXPECT_EQ(fixed.out.find("KLD"), std::string::npos) << fixed.out;
+}
+
+TEST(CliLocalize, MoreThreadsThanCoresWarns) {
+  TempDir dir("cli_localize_threads");
+  prepare(dir);
+  const std::string over = std::to_string(std::thread::hardware_concurrency() + 1);
+  const RunResult r = run_pgmcl(
+      "localize --map room.yaml --log raw.log --out out --quiet --threads " + over + kSmall, dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("pgmcl: warning: threads = " + over + " is more than the "),
+            std::string::npos)
+      << r.err;
+  const RunResult one = run_pgmcl(
+      std::string("localize --map room.yaml --log raw.log --out out --quiet --threads 1") + kSmall,
+      dir);
+  EXPECT_EQ(one.err.find("is more than the"), std::string::npos) << one.err;
+}
+
+TEST(CliLocalize, ALogWithoutOdometryIsBadInputNotABadCommandLine) {
+  TempDir dir("cli_localize_no_odom");
+  prepare(dir);
+  // RAWLASER1 scans carry no pose, and there is no ODOM message: nothing to localise.
+  io::CarmenLog log = io::read_carmen(dir.file("raw.log"));
+  log.odometry.clear();
+  for (auto& s : log.scans) {
+    s.message = io::LaserMessage::kRawLaser1;
+    s.has_poses = false;
+  }
+  io::write_carmen(dir.file("no_odom.log"), log);
+  const RunResult r = run_pgmcl("localize --map room.yaml --log no_odom.log --quiet", dir);
+  EXPECT_EQ(r.code, 1) << r.err;  // mcl/app/README.md: 2 is for a bad command line only
+  EXPECT_NE(r.err.find("no laser scan with odometry"), std::string::npos) << r.err;
 }
 
 TEST(CliLocalize, GlobalLocalisationFindsTheRobot) {

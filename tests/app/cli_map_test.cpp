@@ -84,6 +84,11 @@ TEST(CliMap, SquareRoomWallsOccupiedInteriorFree) {
   // Map bounds: data plus the 1 m default margin.
   EXPECT_NEAR(g.origin().x, room.x0 - 1.0, 0.06);
   EXPECT_NEAR(g.origin().y, room.y0 - 1.0, 0.06);
+  // Written as a person would: -13 x 0.05 is -0.6500000000000001 in binary, snapped and
+  // written as the shortest text that reads back exactly.
+  EXPECT_NE(cli_test::read_text(dir.file("out/room.yaml")).find("origin: [-0.5, -0.65, 0.0]"),
+            std::string::npos)
+      << cli_test::read_text(dir.file("out/room.yaml"));
 }
 
 TEST(CliMap, NoReturnReadingsClearOnlyUpToTheCap) {

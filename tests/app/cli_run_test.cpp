@@ -41,7 +41,7 @@ TEST(CliRun, SimulateWritesAReplayableLogAndTruth) {
   TempDir dir("cli_run_simulate");
   prepare(dir);
   const RunResult r =
-      run_pgmcl("simulate scenario.yaml --out sim/sim.log --truth sim/truth.tum", dir);
+      run_pgmcl("simulate scenario.yaml --out sim/sim.log --truth-out sim/truth.tum", dir);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("room-loop: 41 scans"), std::string::npos) << r.out;
   const io::CarmenLog log = io::read_carmen(dir.file("sim/sim.log"));
@@ -51,8 +51,8 @@ TEST(CliRun, SimulateWritesAReplayableLogAndTruth) {
   EXPECT_NEAR(truth.front().pose.x, 2.0, 1e-9);
   EXPECT_GT(truth.back().pose.x - truth.front().pose.x, 0.5);  // it drove
 
-  const RunResult again =
-      run_pgmcl("simulate scenario.yaml --out sim/sim2.log --truth sim/truth2.tum --quiet", dir);
+  const RunResult again = run_pgmcl(
+      "simulate scenario.yaml --out sim/sim2.log --truth-out sim/truth2.tum --quiet", dir);
   ASSERT_EQ(again.code, 0);
   EXPECT_EQ(cli_test::read_text(dir.file("sim/sim.log")),
             cli_test::read_text(dir.file("sim/sim2.log")));  // seeded: identical
@@ -77,7 +77,7 @@ TEST(CliRun, ExperimentWithAScenarioSimulatesAndLocalises) {
                        "  filter: {particles: 300, global_particles: 3000}\n"
                        "  seed: 9\n"
                        "out: ../results/room\n");
-  const RunResult r = run_pgmcl("run exp/room.yaml --quiet --set filter.gating.enabled=false", dir);
+  const RunResult r = run_pgmcl("run exp/room.yaml --quiet --set gating.enabled=false", dir);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.out.rfind("room: localize: 41 updates", 0), 0u) << r.out;
   for (const char* f : {"trajectory.tum", "metrics.yaml", "config.yaml", "overlay.png", "error.png",
@@ -136,7 +136,7 @@ TEST(CliRun, ExperimentErrorsNameFileLineAndKey) {
   cli_test::write_text(dir.file("ok.yaml"), "data: {scenario: scenario.yaml}\n");
   r = run_pgmcl("run ok.yaml --set bogus=1", dir);
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("--set bogus=1: unknown experiment key"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--set bogus=1: bogus: unknown key"), std::string::npos) << r.err;
 }
 
 }  // namespace

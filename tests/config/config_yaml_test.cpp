@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <string>
 
 #include "pgmcl/config/experiment_yaml.hpp"
@@ -77,6 +78,18 @@ TEST(CliConfig, EveryFieldRoundTrips) {
   LocalizerConfig d, d2 = everything_changed();
   parse_localizer_config(localizer_config_yaml(d), "defaults.yaml", d2);
   EXPECT_EQ(localizer_config_yaml(d2), localizer_config_yaml(d));
+  // Numbers are the shortest text that reads back exactly, readable by people and PyYAML.
+  const std::string text = localizer_config_yaml(c);
+  EXPECT_NE(text.find("a5: 0.015\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("sigma_along: 0.021\n"), std::string::npos) << text;
+  for (std::size_t dot = text.find('.'); dot != std::string::npos; dot = text.find('.', dot + 1)) {
+    std::size_t digits = 0;
+    while (dot + 1 + digits < text.size() &&
+           std::isdigit(static_cast<unsigned char>(text[dot + 1 + digits])))
+      ++digits;
+    EXPECT_LE(digits, 8u) << text.substr(dot - 10, 30);
+  }
+  EXPECT_NE(localizer_config_yaml(d).find("a2: 0.0005\n"), std::string::npos);
 }
 
 TEST(CliConfig, AbsentKeysKeepTheirValues) {
@@ -156,7 +169,7 @@ TEST(CliConfig, SetOverridesUseDottedKeys) {
 TEST(CliConfig, BundledExamplesParse) {
   LocalizerConfig c;
   read_localizer_config(PGMCL_SOURCE_DIR "/configs/filters/tracking.yaml", c);
-  EXPECT_EQ(c.filter.kld.max_particles, 5000u);
+  EXPECT_EQ(c.filter.kld.max_particles, 20000u);
   const Experiment e = read_experiment(PGMCL_SOURCE_DIR "/configs/experiments/lab.yaml");
   EXPECT_EQ(e.name, "lab");
   EXPECT_EQ(e.init.kind, ExperimentInit::Kind::kTruth);

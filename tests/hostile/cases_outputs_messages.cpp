@@ -482,16 +482,17 @@ std::vector<Case> message_cases() {
                  return e.localize("", "", "m.yaml");
                },
                {"empty.pgm", "empty"}});
+  // A file of the wrong kind for its option is a bad command line, named by the option.
   c.push_back({"map_given_as_its_image",
                Expect::kError,
-               1,
+               2,
                [](const Env& e) { return e.localize("", "", e.b.image); },
-               {"map.pgm", "is an image", "not a map YAML"}});
+               {"--map", "map.pgm", "is a PGM image", "not a map YAML"}});
   c.push_back({"log_given_as_an_image",
                Expect::kError,
                2,
                [](const Env& e) { return e.localize("", e.b.image); },
-               {"no laser scan with odometry"}});
+               {"--log", "map.pgm", "is a PGM image", "not a CARMEN log"}});
   c.push_back({"log_is_a_folder",
                Expect::kError,
                2,
@@ -611,9 +612,10 @@ std::vector<Case> first_round_cases() {
                                                }))));
                },
                {"stamped before the previous one"}});
+  // A log without a scan with odometry is bad input (exit 1), not a bad command line.
   c.push_back({"log_without_odometry",
                Expect::kError,
-               2,
+               1,
                [](const Env& e) {
                  e.write("raw.log", "RAWLASER1 0 -1.5 3 1.5 8 0.01 0 3 1 2 3 0 1 h 1\n");
                  return e.localize("", "raw.log");
@@ -621,7 +623,7 @@ std::vector<Case> first_round_cases() {
                {"no laser scan with odometry"}});
   c.push_back({"log_empty",
                Expect::kError,
-               2,
+               1,
                [](const Env& e) { return e.localize("", e.write("e.log", "")); },
                {"no laser scan with odometry"}});
   c.push_back({"log_crlf_line_ends",

@@ -509,7 +509,7 @@ std::vector<Case> silent_cases() {
                {"dropped 12 malformed line", "field_of_view"}});
   c.push_back({"robotlaser_fov_disagrees_everywhere",
                Expect::kError,
-               2,
+               1,
                [](const Env& e) {
                  return e.localize("", e.write("rl.log", join(as_robotlaser(e.log_lines(), 1.0))));
                },

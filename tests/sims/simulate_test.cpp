@@ -75,9 +75,15 @@ TEST(Simulate, DeterministicForASeedAndAnyThreadCount) {
 #ifdef _OPENMP
   omp_set_num_threads(threads);
 #endif
+  // The thread count as a setting: 1 and 3 threads give the same log too.
+  const auto c = simulate(sc, grid, 1), d = simulate(sc, grid, 3);
   ASSERT_EQ(a.records.size(), b.records.size());
+  ASSERT_EQ(a.records.size(), c.records.size());
+  ASSERT_EQ(a.records.size(), d.records.size());
   for (std::size_t k = 0; k < a.records.size(); ++k) {
     EXPECT_EQ(a.records[k].scan.ranges, b.records[k].scan.ranges);
+    EXPECT_EQ(a.records[k].scan.ranges, c.records[k].scan.ranges);
+    EXPECT_EQ(a.records[k].scan.ranges, d.records[k].scan.ranges);
     EXPECT_EQ(a.records[k].odometry.x, b.records[k].odometry.x);
   }
   sc.seed = 6;

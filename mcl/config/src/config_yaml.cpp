@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "config_yaml_detail.hpp"
+#include "pgmcl/config/key_hints.hpp"
 #include "pgmcl/io/values.hpp"
 #include "pgmcl/mcl/config_schema.hpp"
 #include "yaml_reader.hpp"
@@ -118,7 +119,8 @@ class WriteVisitor {
     body();
     *out_ << YAML::EndMap;
   }
-  void number(const schema::Field& f, double v, const schema::Bounds&) { put(f, v); }
+  // Numbers as the shortest text that reads back exactly (io::format_number).
+  void number(const schema::Field& f, double v, const schema::Bounds&) { put(f, format_number(v)); }
   void flag(const schema::Field& f, bool v) { put(f, v); }
   template <class T>
   void integer(const schema::Field& f, T v, const schema::IntRange&) {
@@ -198,6 +200,12 @@ void read_localizer_node(const std::string& file, const YAML::Node& node, const 
   std::size_t root_line = 0;
   try {
     YamlMap root(file, node, path);
+    // Fields are dotted from the file's root; the hints want them from the config's.
+    const std::string prefix = path.empty() ? "" : path + ".";
+    root.set_hint([prefix](const std::string& field) {
+      return localizer_key_hint(field.substr(field.rfind(prefix, 0) == 0 ? prefix.size() : 0),
+                                prefix);
+    });
     root_line = root.line();
     ReadVisitor reader(root, lines);
     schema::describe_config(reader, c);
@@ -296,7 +304,6 @@ std::string localizer_config_reference() {
 
 std::string localizer_config_yaml(const LocalizerConfig& c) {
   YAML::Emitter out;
-  out.SetDoublePrecision(17);
   out << YAML::Comment("pgmcl LocalizerConfig (units: metres, radians)");
   out << YAML::BeginMap;
   WriteVisitor writer(out);

@@ -37,7 +37,9 @@ void checked(const YamlMap& m, F&& validate) {
 
 class ScenarioParser {
  public:
-  explicit ScenarioParser(std::string path) : path_(std::move(path)) {}
+  /// `sets`: "key=value" overrides applied to the file's YAML before it is read.
+  explicit ScenarioParser(std::string path, std::vector<std::string> sets = {})
+      : path_(std::move(path)), sets_(std::move(sets)) {}
 
   ScenarioFile parse(maps::OccupancyGrid& map);
 
@@ -67,6 +69,7 @@ class ScenarioParser {
   void load_labels(const maps::OccupancyGrid& map, sims::SurfaceLayout& s) const;
 
   std::string path_;
+  std::vector<std::string> sets_;
   std::map<std::string, std::pair<std::string, std::size_t>> where_;
   std::string labels_path_;
   std::size_t labels_line_ = 0;

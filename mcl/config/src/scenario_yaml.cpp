@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "pgmcl/io/values.hpp"
 #include "pgmcl/map_io/map_io.hpp"
 #include "scenario_parser.hpp"
 
@@ -234,7 +235,12 @@ ScenarioFile ScenarioParser::parse(maps::OccupancyGrid& map) {
   out.name = fs::path(path_).stem().string();
   sims::Scenario& sc = out.scenario;
 
-  YamlMap root(path_, detail::load_yaml_file(path_), "", 1);
+  YAML::Node doc = detail::load_yaml_file(path_);
+  for (const std::string& s : sets_) {
+    const auto [key, value] = parse_key_value(s, "--set");
+    detail::set_dotted(doc, key, value);
+  }
+  YamlMap root(path_, doc, "", 1);
   root.text("name", out.name);
   YAML::Node description = root.take("description");
   if (description) {
@@ -298,12 +304,23 @@ ScenarioFile ScenarioParser::parse(maps::OccupancyGrid& map) {
 
 }  // namespace detail::scenario
 
-ScenarioFile read_scenario_file(const std::string& yaml_path, maps::OccupancyGrid& map) {
+ScenarioFile read_scenario_file(const std::string& yaml_path, maps::OccupancyGrid& map,
+                                const std::vector<std::string>& sets) {
+  // A problem with an overridden key is the override's, not the file's.
+  auto source = [&sets](const FormatError& e) -> const std::string* {
+    for (const std::string& s : sets) {
+      const std::string key = s.substr(0, s.find('='));
+      const std::string& f = e.field();
+      if (f == key || f.rfind(key + ".", 0) == 0 || f.rfind(key + "[", 0) == 0) return &s;
+    }
+    return nullptr;
+  };
   try {
-    return detail::scenario::ScenarioParser(yaml_path).parse(map);
-  } catch (const ScenarioError&) {
-    throw;
+    return detail::scenario::ScenarioParser(yaml_path, sets).parse(map);
   } catch (const FormatError& e) {
+    if (const std::string* s = source(e))
+      throw ScenarioError("--set " + *s, 0, e.field(), e.message());
+    if (dynamic_cast<const ScenarioError*>(&e) != nullptr) throw;
     throw ScenarioError(e.file(), e.line(), e.field(), e.message());
   }
 }

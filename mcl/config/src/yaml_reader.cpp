@@ -6,6 +6,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "pgmcl/io/values.hpp"
+
 namespace pgmcl::io::detail {
 
 namespace {
@@ -29,8 +31,8 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
   for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
   for (std::size_t i = 1; i <= a.size(); ++i)
     for (std::size_t j = 1; j <= b.size(); ++j) {
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1,
-                          d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      d[i][j] = std::min(
+          {d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
       if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
         d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
     }
@@ -57,6 +59,36 @@ YAML::Node load_yaml_file(const std::string& path) {
     const std::size_t line = e.mark.is_null() ? 0 : static_cast<std::size_t>(e.mark.line) + 1;
     throw FormatError(path, line, "yaml", "not valid YAML: " + e.msg);
   }
+}
+
+void set_dotted(YAML::Node& doc, const std::string& key, const std::string& value) {
+  const std::string source = "--set " + key + "=" + value;
+  YAML::Node leaf;
+  try {
+    leaf = YAML::Load(value);
+  } catch (const YAML::Exception& e) {
+    throw UsageError(source + ": value is not valid YAML: " + e.msg);
+  }
+  std::vector<std::string> parts;
+  std::stringstream ss(key);
+  for (std::string part; std::getline(ss, part, '.');) {
+    if (part.empty()) throw UsageError(source + ": empty component in the dotted key");
+    parts.push_back(part);
+  }
+  if (parts.empty()) throw UsageError(source + ": empty key");
+  if (!doc || doc.IsNull()) doc = YAML::Node(YAML::NodeType::Map);
+  if (!doc.IsMap()) throw UsageError(source + ": the file is not a mapping of keys");
+  YAML::Node node = doc;
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    YAML::Node child = node[parts[i]];
+    if (!child || child.IsNull()) {
+      node[parts[i]] = YAML::Node(YAML::NodeType::Map);
+      child = node[parts[i]];
+    }
+    if (!child.IsMap()) throw UsageError(source + ": " + parts[i] + " is not a mapping");
+    node.reset(child);
+  }
+  node[parts.back()] = leaf;
 }
 
 YamlMap::YamlMap(std::string file, YAML::Node node, std::string path, std::size_t parent_line)
@@ -186,7 +218,9 @@ bool YamlMap::pose(const char* key, Pose2& out) {
 
 YamlMap YamlMap::child(const char* key) {
   const YAML::Node n = take(key);
-  return YamlMap(file_, n, field(key), line(key));
+  YamlMap m(file_, n, field(key), line(key));
+  m.hint_ = hint_;
+  return m;
 }
 
 std::vector<std::pair<YAML::Node, std::string>> YamlMap::sequence(const char* key) {
@@ -205,8 +239,18 @@ void YamlMap::finish() const {
     const std::string& key = kv.first.Scalar();
     if (read_.count(key) != 0) continue;
     std::string problem = "unknown key";
-    if (const std::string near = closest_key(key); !near.empty())
+    const std::string hint = hint_ ? hint_(field(key)) : std::string();
+    if (!hint.empty()) {
+      problem += ": " + hint;
+    } else if (const std::string near = closest_key(key); !near.empty()) {
       problem += " (did you mean '" + near + "'?)";
+    }
+    if (!read_.empty()) {
+      std::string keys;
+      for (const std::string& k : read_) keys += (keys.empty() ? "" : ", ") + k;
+      problem +=
+          "; keys " + (path_.empty() ? std::string("at the top") : "under " + path_) + ": " + keys;
+    }
     throw FormatError(file_, yaml_line(kv.first), field(key), problem);
   }
 }

@@ -7,6 +7,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cstdint>
+#include <functional>
 #include <set>
 #include <string>
 #include <utility>
@@ -22,6 +23,12 @@ namespace pgmcl::io::detail {
 
 /// Parses a whole YAML document; syntax errors become FormatError(file, line, "yaml", ...).
 [[nodiscard]] YAML::Node load_yaml_file(const std::string& path);
+
+/// Sets the dotted `key` ("robot.start") of the mapping `doc` to `value` read as YAML,
+/// creating mappings on the way: a command line's `--set key=value`. Throws UsageError
+/// naming `--set key=value` for bad YAML, an empty key part, or a key part under a value
+/// that is not a mapping.
+void set_dotted(YAML::Node& doc, const std::string& key, const std::string& value);
 
 /// A mapping under construction. `path` is the dotted key of the mapping itself ("" for the
 /// document root); fields are reported as path + "." + key. Not copyable by design of use:
@@ -59,9 +66,13 @@ class YamlMap {
   /// Elements of a sequence (absent -> empty); each element's field is key[i].
   [[nodiscard]] std::vector<std::pair<YAML::Node, std::string>> sequence(const char* key);
 
-  /// Throws for the first key that was not read, suggesting the nearest key that was asked
-  /// for ("unknown key (did you mean 'particles'?)").
+  /// Throws for the first key that was not read: "unknown key", then the hint for its
+  /// dotted field if there is one (set_hint), else the nearest key that was asked for
+  /// ("(did you mean 'particles'?)"), then the keys asked for at this level.
   void finish() const;
+  /// What to say about an unknown key (its dotted field), or ""; inherited by child().
+  using KeyHint = std::function<std::string(const std::string& field)>;
+  void set_hint(KeyHint hint) { hint_ = std::move(hint); }
   /// The key asked for (read or looked up) that is nearest `key` in edit distance, or "".
   [[nodiscard]] std::string closest_key(const std::string& key) const;
 
@@ -75,6 +86,7 @@ class YamlMap {
   std::string path_;
   std::size_t line_ = 0;
   std::set<std::string> read_;
+  KeyHint hint_;
 };
 
 // Free readers for values that are not directly in a mapping (sequence elements).

@@ -1,6 +1,7 @@
 #include "pgmcl/eval/evaluation.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <span>
 
@@ -69,6 +70,30 @@ AteResult evaluate_ate(const Trajectory& estimate, const Trajectory& truth, cons
     }
   }
   return res;
+}
+
+std::string ate_match_warning(const AteResult& ate, const AteOptions& opt) {
+  if (ate.matched >= ate.estimated) return {};
+  char buf[400];
+  const char* how = opt.association == Association::kInterpolate
+                        ? "interpolated between truth poses at most %.3g s apart, else the "
+                          "nearest within %.3g s"
+                        : "the nearest within %.3g s";
+  char rule[200];
+  if (opt.association == Association::kInterpolate) {
+    std::snprintf(rule, sizeof rule, how, opt.max_gap, opt.tolerance);
+  } else {
+    std::snprintf(rule, sizeof rule, how, opt.tolerance);
+  }
+  std::snprintf(buf, sizeof buf,
+                "only %zu of %zu estimate poses (%.0f %%) have a ground-truth pose (%s); the "
+                "figures cover only those",
+                ate.matched, ate.estimated,
+                ate.estimated
+                    ? 100.0 * static_cast<double>(ate.matched) / static_cast<double>(ate.estimated)
+                    : 0.0,
+                rule);
+  return buf;
 }
 
 }  // namespace pgmcl::io

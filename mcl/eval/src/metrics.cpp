@@ -81,6 +81,8 @@ std::vector<MetricEntry> metrics_entries(const RunMetrics& m, bool run_figures) 
         count("skipped_updates", m.skipped_updates),
         real("update_ms_mean", m.update_ms_mean),
         real("update_ms_p95", m.update_ms_p95),
+        real("update_ms_median", m.update_ms_median),
+        real("update_ms_max", m.update_ms_max),
         real("wall_s", m.wall_s),
         real("particles_mean", m.particles_mean),
         count("particles_min", m.particles_min),
@@ -99,6 +101,7 @@ std::vector<MetricEntry> metrics_entries(const RunMetrics& m, bool run_figures) 
     r.push_back(real("heading_rmse_deg", a.heading_rmse_deg));
     r.push_back(maybe("converged_after_s", a.converged_after_s));
     r.push_back(count("truth_matched", a.matched));
+    r.push_back(real("truth_matched_fraction", a.matched_fraction));
     r.push_back(maybe("lock_on_s", a.lock_on_s));
     r.push_back(real("lock_on_travel_m", a.lock_on_travel_m));
     r.push_back(real("post_lock_ate_rmse_m", a.post_lock_ate_rmse_m));
@@ -126,6 +129,8 @@ AccuracyMetrics accuracy_metrics(const AteResult& ate) {
   a.heading_rmse_deg = ate.heading.rms;
   a.converged_after_s = ate.converged_after_s;
   a.matched = ate.matched;
+  a.matched_fraction =
+      ate.estimated ? static_cast<double>(ate.matched) / static_cast<double>(ate.estimated) : 0.0;
   a.lock_on_s = ate.lock_on_s;
   a.lock_on_travel_m = ate.lock_on_travel_m;
   a.post_lock_ate_rmse_m = ate.post_lock_translation.rms;
@@ -161,6 +166,8 @@ RunMetrics MetricsAccumulator::summarise(double wall_s) const {
     for (const double v : update_ms_) sum += v;
     m.update_ms_mean = sum / n;
     m.update_ms_p95 = percentile(update_ms_, 95.0);
+    m.update_ms_median = percentile(update_ms_, 50.0);
+    m.update_ms_max = *std::max_element(update_ms_.begin(), update_ms_.end());
     m.particles_mean = particles_sum_ / n;
     m.particles_min = particles_min_;
     m.particles_max = particles_max_;

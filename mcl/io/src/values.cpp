@@ -18,6 +18,23 @@ std::string_view trim(std::string_view s) {
 
 }  // namespace
 
+std::string format_number(double v) {
+  if (std::isnan(v)) return ".nan";
+  if (std::isinf(v)) return v > 0 ? ".inf" : "-.inf";
+  char buf[400];
+  // Shortest round trip, in positional notation where that stays short ("0.0005", not
+  // "5e-04"), else in scientific notation with a mantissa dot ("1.0e-09": YAML 1.1 readers
+  // such as PyYAML take "1e-09" for a string).
+  const double a = std::abs(v);
+  const bool fixed = a == 0.0 || (a >= 1e-6 && a < 1e15);
+  const auto res = std::to_chars(buf, buf + sizeof buf, v,
+                                 fixed ? std::chars_format::fixed : std::chars_format::scientific);
+  std::string s(buf, res.ptr);
+  const std::size_t e = s.find('e');
+  if (s.find('.') == std::string::npos) s.insert(e == std::string::npos ? s.size() : e, ".0");
+  return s;
+}
+
 double parse_number(std::string_view text, std::string_view option) {
   const std::string_view t = trim(text);
   double v = 0.0;

@@ -47,11 +47,17 @@ def plot(m, run, truth, out):
     # Unknown cells grey, free white, occupied black; row 0 is the bottom row.
     shade = np.where(m.cells < 0, 0.8, 1.0 - m.cells / 100.0)
     ax_map.imshow(shade, cmap="gray", vmin=0, vmax=1, origin="lower", extent=m.extent)
-    ax_map.plot(truth[:, 1], truth[:, 2], color="tab:green", lw=1.2, label="truth")
+    # Truth wider underneath, so it shows on both sides of an estimate that follows it.
+    ax_map.plot(truth[:, 1], truth[:, 2], color="tab:green", lw=2.5, label="truth")
     est = run.trajectory
     ax_map.plot(est[:, 1], est[:, 2], color="tab:red", lw=0.8, label="estimate")
+    ax_map.plot(*truth[0, 1:3], "o", mfc="white", mec="black", ms=7, label="start")
+    # The final cloud on top (at this scale a tracking filter's cloud is one dot).
+    poses = run.particles
+    ax_map.scatter(poses[:, 0], poses[:, 1], color="darkorange", s=10, edgecolors="black",
+                   linewidths=0.3, zorder=3, label=f"{len(poses)} final particles")
     ax_map.set(title="Intel Research Lab", xlabel="x [m]", ylabel="y [m]", aspect="equal")
-    ax_map.legend(loc="lower right")
+    ax_map.legend(loc="upper left")  # the map's empty corner
 
     t, position, heading = run.errors.T
     metrics = run.metrics

@@ -281,11 +281,8 @@ ReplayResult run(const ReplayJob& job, const ReplayHooks& hooks) {
                              " estimated poses in time (a different log, or another clock?); "
                              "no accuracy figures");
     } else {
-      if (ate.matched < out.trajectory.size()) {
-        out.warnings.push_back("the ground truth covers " + std::to_string(ate.matched) +
-                               " of the " + std::to_string(out.trajectory.size()) +
-                               " estimated poses; the accuracy figures are over those only");
-      }
+      if (const std::string w = io::ate_match_warning(ate); !w.empty())
+        out.warnings.push_back(job.log_name + " against the ground truth: " + w);
       out.ate = std::move(ate);
       out.metrics.accuracy = io::accuracy_metrics(*out.ate);
       count_false_convergence(out.rows, *out.ate, *out.metrics.accuracy);

@@ -99,8 +99,11 @@ void render_scan(const Scene& scene, const SensorProfile& profile, const Pose2& 
                  const BeamNoise& noise, Rng& rng, std::span<float> ranges);
 
 /// The whole run. Deterministic for a seed: scan k draws from Rng::for_block(seed, k, 0),
-/// so the OpenMP loop over scans gives the same log for any thread count.
+/// so the OpenMP loop over scans gives the same log for any thread count. `threads`: OpenMP
+/// threads for that loop, 0 = OpenMP's default (a setting, not a global: the caller's other
+/// parallel regions keep theirs).
 /// Throws std::invalid_argument for invalid scenarios (see Scenario::validate).
-[[nodiscard]] SimulationLog simulate(const Scenario& scenario, const maps::OccupancyGrid& grid);
+[[nodiscard]] SimulationLog simulate(const Scenario& scenario, const maps::OccupancyGrid& grid,
+                                     int threads = 0);
 
 }  // namespace pgmcl::sims

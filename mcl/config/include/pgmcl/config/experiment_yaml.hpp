@@ -19,7 +19,9 @@
 ///
 /// Relative paths are relative to the experiment file's folder (`out` too). Errors throw
 /// ConfigError "file:line: key: problem" (unknown keys, wrong types, both or neither of
-/// data.log and data.scenario, and the filter's own errors at their lines).
+/// data.log and data.scenario, and the filter's own errors at their lines); an input path
+/// that does not exist, or is the wrong kind of file (io::detect_file_kind), is an error
+/// naming the key, the path as written and the folder it was resolved against.
 
 #include <optional>
 #include <string>
@@ -49,15 +51,20 @@ struct Experiment {
   std::string relations;     ///< resolved path, may be empty
   double time_offset = 0.0;  ///< seconds
   ExperimentInit init{};
-  LocalizerConfig filter{};  ///< validated
-  std::string out;           ///< resolved output directory
+  LocalizerConfig filter{};        ///< validated
+  std::string out;                 ///< resolved output directory
+  std::vector<std::string> notes;  ///< deprecated spellings used in `sets`, for the caller
 };
 
-/// Reads an experiment. `sets` are "key=value" overrides applied after the file: keys under
-/// `filter.` go to the LocalizerConfig (apply_localizer_override), and name, map, out,
-/// init, data.log, data.scenario, data.truth, data.relations, data.time_offset replace
-/// those values (paths relative to the current directory, as typed on a command line).
-/// Throws ConfigError (file errors), UsageError (a bad --set), IoError (unreadable file).
+/// Reads an experiment. `sets` are "key=value" overrides applied after the file: name, map,
+/// out, init, data.log, data.scenario, data.truth, data.relations, data.time_offset replace
+/// those values (paths relative to the current directory, as typed on a command line; init
+/// also as "x,y,theta[,sx,sy,stheta]" like --init), and every other key is a filter key
+/// with the same path as `pgmcl localize --set` ("filter.particles=500"); the old
+/// "filter.filter.particles" still works and adds a line to Experiment::notes.
+/// Then every input path must exist and be of its kind. Throws ConfigError (file errors,
+/// missing inputs), UsageError (a bad --set, a missing input it named, a wrong kind of
+/// file), IoError (unreadable file).
 [[nodiscard]] Experiment read_experiment(const std::string& path,
                                          const std::vector<std::string>& sets = {});
 

@@ -47,6 +47,7 @@
 /// sims::Scenario::validate against the loaded map, reported at the key they concern.
 
 #include <string>
+#include <vector>
 
 #include "pgmcl/io/errors.hpp"
 #include "pgmcl/maps/occupancy_grid.hpp"
@@ -72,9 +73,13 @@ struct ScenarioFile {
 };
 
 /// Reads the scenario at `yaml_path`, loads its map into `map` and validates the scenario
-/// against it. Throws ScenarioError (see above), io::IoError if the file is unreadable.
+/// against it. `sets` are "key=value" overrides of the file's keys ("duration=20",
+/// "robot.start=[1, 2, 0]"), values read as YAML, applied before reading: a problem with an
+/// overridden key is reported as "--set key=value: key: problem". Throws ScenarioError
+/// (see above), UsageError for a malformed --set, io::IoError if the file is unreadable.
 [[nodiscard]] ScenarioFile read_scenario_file(const std::string& yaml_path,
-                                              maps::OccupancyGrid& map);
+                                              maps::OccupancyGrid& map,
+                                              const std::vector<std::string>& sets = {});
 
 /// Convenience for tools: the scenario alone; the map goes to `map_out` when non-null.
 [[nodiscard]] sims::Scenario load_scenario(const std::string& yaml_path,

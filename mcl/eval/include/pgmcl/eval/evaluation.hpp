@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "pgmcl/eval/error_stats.hpp"
@@ -62,5 +63,10 @@ struct AteResult {
 /// Both trajectories may come in any order (they are sorted by stamp internally).
 [[nodiscard]] AteResult evaluate_ate(const Trajectory& estimate, const Trajectory& truth,
                                      const AteOptions& opt = {});
+
+/// "" when every estimate pose was matched; else "only 80 of 440 estimate poses (18 %) have
+/// a ground-truth pose (...); the figures cover only those": a partial match scores part of
+/// a run, and usually means the clocks differ.
+[[nodiscard]] std::string ate_match_warning(const AteResult& ate, const AteOptions& opt = {});
 
 }  // namespace pgmcl::io

@@ -20,7 +20,8 @@ struct AccuracyMetrics {
   double heading_rmse_deg = 0.0;  ///< RMSE of wrapped heading error, degrees
   /// Seconds from the first estimate until the error stays small; nullopt if never.
   std::optional<double> converged_after_s;
-  std::size_t matched = 0;  ///< estimate poses matched to ground truth
+  std::size_t matched = 0;        ///< estimate poses matched to ground truth
+  double matched_fraction = 0.0;  ///< of the estimate poses (1: the whole run is scored)
   /// Lock-on (AteResult): seconds from the first estimate until the position error stays
   /// within 1 m (0: never lost; nullopt: lost at the end), the truth's path length until
   /// then, and the errors after it.
@@ -50,6 +51,10 @@ struct RunMetrics {
   std::size_t skipped_updates = 0;  ///< scans the filter skipped (gating, bad scan)
   double update_ms_mean = 0.0;      ///< per-update wall time, milliseconds
   double update_ms_p95 = 0.0;       ///< 95th percentile (nearest rank), milliseconds
+  /// Median and slowest update, milliseconds: a few slow updates (a global search) raise the
+  /// mean above the p95, and these show it.
+  double update_ms_median = 0.0;
+  double update_ms_max = 0.0;
   double wall_s = 0.0;              ///< whole run, seconds
   double particles_mean = 0.0;      ///< over performed updates
   std::size_t particles_min = 0;    ///< over performed updates
@@ -111,6 +116,7 @@ struct MetricEntry {
 
 /// The YAML text of metrics.yaml (keys as in RunMetrics; accuracy and relations keys:
 /// ate_rmse_m, ate_max_m, heading_rmse_deg, converged_after_s (null if never), truth_matched,
+/// truth_matched_fraction,
 /// relations_trans_m, relations_rot_deg, relations_trans_std_m, relations_rot_std_deg,
 /// relations_used; `complete` and, when there are any, the `warnings` list). `run_figures`
 /// false leaves out the filter's own figures (updates .. beams_used_mean, complete,

@@ -19,6 +19,11 @@ class UsageError : public std::runtime_error {
   explicit UsageError(const std::string& what) : std::runtime_error(what) {}
 };
 
+/// The shortest text that reads back as exactly `v` ("0.05", not "0.050000000000000003"),
+/// with ".0" on whole numbers so a YAML reader sees a real number: what files pgmcl writes
+/// for people to read use.
+[[nodiscard]] std::string format_number(double v);
+
 /// Parses one finite number; the whole text must be consumed. Throws UsageError naming
 /// `option` ("--resolution: expected a number, got 'abc'").
 [[nodiscard]] double parse_number(std::string_view text, std::string_view option);

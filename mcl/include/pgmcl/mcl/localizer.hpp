@@ -72,6 +72,15 @@ class Localizer {
   /// Re-initialises uniformly over the free cells (uniform heading) with
   /// filter.global_particles particles. Forces the next measurement update.
   void global_localize();
+  /// Swaps in a new map (its likelihood field and free cells, as for the second constructor)
+  /// and keeps the particles: each keeps its global pose, weight and probation, re-expressed
+  /// in the new grid's map-local frame. For a map of the same global frame (an edited or
+  /// re-published map), not for one whose frame moved. Competing hypotheses found on the
+  /// old map are dropped; the next update() measures against the new one. Throws
+  /// std::invalid_argument (state unchanged) for empty or out-of-range free cells or a null
+  /// field.
+  void replace_map(std::shared_ptr<const maps::LikelihoodField> field,
+                   std::vector<std::uint32_t> free_cells);
 
   [[nodiscard]] ParticlesView particles() const noexcept;
   [[nodiscard]] const LocalizerConfig& config() const noexcept { return cfg_; }

@@ -7,7 +7,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash cmake/setup.sh
 jobs=${PGMCL_JOBS:-2}
-cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release -DPGMCL_WITH_ROS=ON >/dev/null
 cmake --build build/release -j"$jobs" --target pgmcl
 pgmcl=build/release/pgmcl
 out=out/demo

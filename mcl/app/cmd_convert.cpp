@@ -1,0 +1,109 @@
+/// pgmcl convert: a CARMEN log as a ROS 1 bag (/scan, /tf, /tf_static, /odom), or a bag as
+/// a CARMEN log. The direction follows the file names: one side must end in ".bag".
+
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "app_util.hpp"
+#include "commands.hpp"
+#include "pgmcl/io/carmen_writer.hpp"
+#include "pgmcl/io/values.hpp"
+#ifdef PGMCL_HAVE_ROS
+#include "pgmcl/rosbag_io/rosbag_io.hpp"
+#endif
+
+namespace pgmcl::app {
+namespace {
+
+struct ConvertOptions {
+  std::string in;
+  std::string out;
+  std::string scan_topic = "/scan";
+  std::string odom_topic;
+  std::string odom_frame = "odom";
+  std::string base_frame = "base_link";
+  std::string laser_frame = "laser";
+  double time_offset = 0.0;
+  bool strict = false;
+};
+
+int run_convert(const ConvertOptions& o) {
+#ifdef PGMCL_HAVE_ROS
+  const bool bag_in = rosbag_io::is_bag_path(o.in), bag_out = rosbag_io::is_bag_path(o.out);
+  if (!bag_in && bag_out && is_carmen_path(o.in)) {
+    const io::CarmenLog log = read_log(o.in, {}, o.strict);
+    rosbag_io::BagWriteOptions w;
+    w.scan_topic = o.scan_topic;
+    w.odom_topic = o.odom_topic.empty() ? "/odom" : o.odom_topic;
+    w.odom_frame = o.odom_frame;
+    w.base_frame = o.base_frame;
+    w.laser_frame = o.laser_frame;
+    w.time_offset = o.time_offset;
+    ensure_parent_directory(o.out);
+    const rosbag_io::BagWriteReport r = rosbag_io::write_bag(log, o.out, w);
+    std::printf("convert: wrote %zu scans to %s (%s, /tf %s -> %s, /tf_static %s -> %s, %s)",
+                r.scans, o.out.c_str(), w.scan_topic.c_str(), w.odom_frame.c_str(),
+                w.base_frame.c_str(), w.base_frame.c_str(), w.laser_frame.c_str(),
+                w.odom_topic.c_str());
+    if (r.without_odometry > 0) std::printf("; left out %zu without odometry", r.without_odometry);
+    if (r.out_of_order > 0)
+      std::printf("; left out %zu stamped before the previous scan", r.out_of_order);
+    std::printf("\n");
+    return 0;
+  }
+  if (bag_in && !bag_out && is_carmen_path(o.out)) {
+    rosbag_io::BagReadOptions rd;
+    rd.scan_topic = o.scan_topic;
+    rd.odom_topic = o.odom_topic;
+    rd.odom_frame = o.odom_frame;
+    rd.base_frame = o.base_frame;
+    rosbag_io::BagReadReport report;
+    const io::CarmenLog log = rosbag_io::read_bag(o.in, rd, &report);
+    for (const std::string& n : report.notes)
+      std::fprintf(stderr, "pgmcl: %s: %s\n", o.in.c_str(), n.c_str());
+    ensure_parent_directory(o.out);
+    io::write_carmen(o.out, log);
+    std::printf("convert: wrote %zu scans and %zu odometry poses to %s", log.scans.size(),
+                log.odometry.size(), o.out.c_str());
+    if (report.outside_odometry > 0)
+      std::printf("; %zu scans lie outside the odometry's time span", report.outside_odometry);
+    std::printf("\n");
+    return 0;
+  }
+  throw io::UsageError(
+      "convert: one of --log and --out must be a ROS bag (.bag), the other a "
+      "CARMEN log (.log or .clf, optionally .gz)");
+#else
+  (void)o;
+  throw std::runtime_error(
+      "convert: this pgmcl was built without ROS 1 (PGMCL_WITH_ROS=OFF or "
+      "the ROS packages missing): bags need librosbag-storage-dev");
+#endif
+}
+
+}  // namespace
+
+Command add_convert_command(CLI::App& app) {
+  auto o = std::make_shared<ConvertOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "convert", "Write a CARMEN log as a ROS 1 bag (/scan, /tf, /tf_static, /odom), or back");
+  sub->add_option("--log", o->in, "Input: a CARMEN log (.log, .clf, optionally .gz) or a .bag")
+      ->required()
+      ->check(CLI::ExistingFile);
+  sub->add_option("--out", o->out, "Output: a .bag, or a CARMEN log for a bag input")->required();
+  sub->add_option("--scan-topic", o->scan_topic, "LaserScan topic")->capture_default_str();
+  sub->add_option("--odom-topic", o->odom_topic,
+                  "nav_msgs/Odometry topic (written: /odom by default; read: odometry from "
+                  "/tf unless given)");
+  sub->add_option("--odom-frame", o->odom_frame, "Odometry frame")->capture_default_str();
+  sub->add_option("--base-frame", o->base_frame, "Robot base frame")->capture_default_str();
+  sub->add_option("--laser-frame", o->laser_frame, "Laser frame (written bags)")
+      ->capture_default_str();
+  sub->add_option("--time-offset", o->time_offset,
+                  "Seconds added to every stamp of a written bag (ROS time must be > 0)");
+  sub->add_flag("--strict", o->strict, "Malformed log lines are errors, not warnings");
+  return {sub, [o] { return run_convert(*o); }};
+}
+
+}  // namespace pgmcl::app

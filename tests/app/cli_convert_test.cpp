@@ -1,0 +1,81 @@
+// `pgmcl convert`: a CARMEN log as a ROS 1 bag and back (with PGMCL_WITH_ROS), or a clear
+// error in a build without ROS.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "cli_test_util.hpp"
+
+namespace pgmcl {
+namespace {
+
+using cli_test::run_pgmcl;
+using cli_test::RunResult;
+using cli_test::TempDir;
+
+#ifdef PGMCL_HAVE_ROS
+
+TEST(CliConvert, CarmenToBagAndBack) {
+  TempDir dir("cli_convert");
+  io::write_carmen(dir.file("room.log"),
+                   cli_test::room_log(cli_test::Room{}, cli_test::room_loop(40), 180));
+  RunResult r = run_pgmcl("convert --log room.log --out out/room.bag", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out,
+            "convert: wrote 40 scans to out/room.bag (/scan, /tf odom -> base_link, /tf_static "
+            "base_link -> laser, /odom)\n");
+  r = run_pgmcl("convert --log out/room.bag --out back.log.gz", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out, "convert: wrote 40 scans and 40 odometry poses to back.log.gz\n");
+  EXPECT_NE(r.err.find("left unread: /odom (40 messages)"), std::string::npos) << r.err;
+  const io::CarmenLog back = io::read_carmen(dir.file("back.log.gz"));
+  ASSERT_EQ(back.scans.size(), 40u);
+  EXPECT_EQ(back.scans[0].message, io::LaserMessage::kRobotLaser1);
+  EXPECT_EQ(back.scans[3].stamp, 2.5);
+  // Odometry from the Odometry topic and other frame names are options.
+  r = run_pgmcl("convert --log room.log --out named.bag --odom-frame wheels --base-frame body",
+                dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = run_pgmcl("convert --log named.bag --out n.log --odom-topic /odom --base-frame body", dir);
+  EXPECT_EQ(r.code, 0) << r.err;
+}
+
+TEST(CliConvert, ErrorsNameWhatIsWrong) {
+  TempDir dir("cli_convert_errors");
+  io::write_carmen(dir.file("room.log"),
+                   cli_test::room_log(cli_test::Room{}, cli_test::room_loop(5), 180));
+  RunResult r = run_pgmcl("convert --log room.log --out other.log", dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err,
+            "pgmcl: error: convert: one of --log and --out must be a ROS bag (.bag), the other "
+            "a CARMEN log (.log or .clf, optionally .gz)\n");
+  ASSERT_EQ(run_pgmcl("convert --log room.log --out room.bag", dir).code, 0);
+  r = run_pgmcl("convert --log room.bag --out x.log --odom-frame odom_combined", dir);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.err,
+            "pgmcl: error: room.bag: /tf: no transform odom_combined -> base_link "
+            "(--odom-frame, --base-frame; edges in the bag: odom -> base_link)\n");
+  cli_test::write_text(dir.file("junk.bag"), "not a bag");
+  r = run_pgmcl("convert --log junk.bag --out x.log", dir);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.err.find("pgmcl: error: junk.bag: "), 0u) << r.err;
+}
+
+#else
+
+TEST(CliConvert, NeedsRos) {
+  TempDir dir("cli_convert_no_ros");
+  io::write_carmen(dir.file("room.log"),
+                   cli_test::room_log(cli_test::Room{}, cli_test::room_loop(5), 180));
+  const RunResult r = run_pgmcl("convert --log room.log --out room.bag", dir);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.err,
+            "pgmcl: error: convert: this pgmcl was built without ROS 1 (PGMCL_WITH_ROS=OFF or "
+            "the ROS packages missing): bags need librosbag-storage-dev\n");
+}
+
+#endif
+
+}  // namespace
+}  // namespace pgmcl

@@ -25,6 +25,7 @@
 #include "pgmcl/mcl/localizer_config.hpp"
 #include "pgmcl/mcl/measurement_model.hpp"
 #include "pgmcl/mcl/particles.hpp"
+#include "pgmcl/mcl/thread_policy.hpp"
 #include "pgmcl/mcl/update_result.hpp"
 
 namespace pgmcl {
@@ -150,7 +151,9 @@ class Localizer {
   bool have_stamp_ = false;
   double last_stamp_ = 0.0;
   bool force_ = true;
-  std::uint64_t step_ = 0;  ///< counter keying every random stream
+  std::uint64_t step_ = 0;      ///< counter keying every random stream
+  ThreadPolicy thread_policy_;  ///< team or one thread, by the last updates' cost
+  int threads_ = 1;             ///< what this update's parallel loops use
   bool have_averages_ = false;
   double w_slow_ = 0.0, w_fast_ = 0.0;
   UpdateResult last_{};

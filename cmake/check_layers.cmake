@@ -14,6 +14,7 @@ set(allowed_mcl "pgmcl::maps;pgmcl::sensor_model;pgmcl::common;OpenMP::OpenMP_CX
 set(allowed_nav "pgmcl::mcl")
 set(allowed_io "pgmcl::common;pgmcl::sims;ZLIB::ZLIB")
 set(allowed_eval "pgmcl::io")
+set(allowed_replay "pgmcl::mcl;pgmcl::eval;pgmcl::io")
 set(allowed_config "pgmcl::mcl;pgmcl::sims;pgmcl::map_io;pgmcl::io;yaml-cpp")
 set(failed FALSE)
 foreach(c IN LISTS components)

@@ -1,6 +1,6 @@
 #pragma once
 /// The localisation run shared by `pgmcl localize` and `pgmcl run`: replay a CARMEN log
-/// through pgmcl::Localizer and write the results.
+/// through pgmcl::Localizer (pgmcl::replay) and write the results.
 ///
 /// Outputs in `out_dir`:
 ///   trajectory.tum  one pose per Localizer::update() call (= per scan with odometry),
@@ -19,32 +19,14 @@
 #include <vector>
 
 #include "pgmcl/eval/metrics.hpp"
-#include "pgmcl/io/carmen.hpp"
-#include "pgmcl/io/relations.hpp"
-#include "pgmcl/io/trajectory.hpp"
-#include "pgmcl/maps/occupancy_grid.hpp"
-#include "pgmcl/mcl/localizer_config.hpp"
+#include "pgmcl/replay/replay.hpp"
 
 namespace pgmcl::app {
 
-/// How the filter starts.
-struct InitialBelief {
-  enum class Kind { kGlobal, kPose, kTruth } kind = Kind::kGlobal;
-  Pose2 pose{};              ///< kPose: mean, global frame
-  double sigma_xy = 0.25;    ///< metres (kPose, kTruth)
-  double sigma_theta = 0.1;  ///< radians (kPose, kTruth)
-  double sigma_y = -1.0;     ///< metres; < 0: sigma_xy
-};
+using replay::InitialBelief;
 
-struct LocalizeJob {
-  const maps::OccupancyGrid* map = nullptr;
-  const io::CarmenLog* log = nullptr;
-  std::string log_name;  ///< for messages
-  LocalizerConfig config{};
-  InitialBelief init{};
-  std::optional<io::Trajectory> truth;
-  std::optional<std::vector<io::Relation>> relations;
-  double relations_time_offset = 0.0;  ///< seconds: estimate stamp + offset = relation stamp
+/// A replay and where its results go.
+struct LocalizeJob : replay::ReplayJob {
   std::string out_dir;
   std::string title;  ///< overlay caption
   bool quiet = false;

@@ -19,6 +19,17 @@ $pgmcl perturb --log data/logs/intel-corrected.log.gz --odom-noise 0.005,0.0005,
   --seed 1 --out "$out/intel/raw.log.gz" --truth-out "$out/intel/truth.tum"
 $pgmcl run configs/experiments/intel-demo.yaml --out "$out/intel/tracking"
 
+if grep -q '^PGMCL_HAVE_ROS:INTERNAL=ON' build/release/CMakeCache.txt; then
+  echo "== The same case as a ROS 1 bag: pgmcl convert, then pgmcl localize --bag (no master)"
+  $pgmcl convert --log "$out/intel/raw.log.gz" --out "$out/intel/raw.bag"
+  $pgmcl localize --map "$out/intel/map.yaml" --bag "$out/intel/raw.bag" \
+    --truth "$out/intel/truth.tum" --set motion.noise.a1=0.01 --set motion.noise.a2=0.001 \
+    --set motion.noise.a3=0.01 --set motion.noise.a4=0.001 --set likelihood.table.kind=isotropic \
+    --set filter.particles=1000 --seed 1 --quiet --out "$out/intel/bag"
+else
+  echo "== (ROS 1 not built: no bag conversion; see the PGMCL_WITH_ROS message of cmake)"
+fi
+
 echo "== Simulated UTM-30LX scene (the paper's sensor, 1081 beams)"
 $pgmcl run configs/experiments/lab.yaml --out "$out/utm-lab"
 

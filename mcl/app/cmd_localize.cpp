@@ -1,4 +1,6 @@
-/// pgmcl localize: run the filter over a log against a map.
+/// pgmcl localize: run the filter over a log (CARMEN, or a ROS 1 bag with --bag) against a
+/// map. A bag is read into the same in-memory log (pgmcl::rosbag_io) and replayed by the
+/// same loop (pgmcl::replay).
 ///
 /// Configuration precedence: struct defaults < --config file < --set overrides (in order)
 /// < --threads / --seed. Start: --init pose, --global, or (neither) the ground truth at the
@@ -15,7 +17,11 @@
 #include "localize_pipeline.hpp"
 #include "pgmcl/config/config_yaml.hpp"
 #include "pgmcl/io/relations.hpp"
+#include "pgmcl/io/values.hpp"
 #include "pgmcl/map_io/map_io.hpp"
+#ifdef PGMCL_HAVE_ROS
+#include "pgmcl/rosbag_io/rosbag_io.hpp"
+#endif
 
 namespace pgmcl::app {
 namespace {
@@ -23,6 +29,11 @@ namespace {
 struct LocalizeOptions {
   std::string map;
   std::string log;
+  std::string bag;
+  std::string scan_topic = "/scan";
+  std::string odom_topic;
+  std::string odom_frame = "odom";
+  std::string base_frame = "base_link";
   std::string config;
   std::vector<std::string> sets;
   std::string init;
@@ -39,6 +50,28 @@ struct LocalizeOptions {
   bool quiet = false;
 };
 
+/// The bag's scans and odometry as the log the replay takes.
+io::CarmenLog read_bag_log(const LocalizeOptions& o) {
+#ifdef PGMCL_HAVE_ROS
+  rosbag_io::BagReadOptions opt;
+  opt.scan_topic = o.scan_topic;
+  opt.odom_topic = o.odom_topic;
+  opt.odom_frame = o.odom_frame;
+  opt.base_frame = o.base_frame;
+  rosbag_io::BagReadReport report;
+  io::CarmenLog log = rosbag_io::read_bag(o.bag, opt, &report);
+  if (report.outside_odometry > 0)
+    std::fprintf(stderr, "pgmcl: warning: %s: %zu scan(s) outside the odometry's time span\n",
+                 o.bag.c_str(), report.outside_odometry);
+  return log;
+#else
+  (void)o;
+  throw std::runtime_error(
+      "localize --bag: this pgmcl was built without ROS 1 (PGMCL_WITH_ROS="
+      "OFF or the ROS packages missing): bags need librosbag-storage-dev");
+#endif
+}
+
 int run_localize(const LocalizeOptions& o) {
   LocalizeJob job;
   if (!o.config.empty()) io::read_localizer_config(o.config, job.config);
@@ -49,11 +82,14 @@ int run_localize(const LocalizeOptions& o) {
   maps::MapLoadReport report;
   const maps::OccupancyGrid map = maps::load_map(o.map, &report);
   for (const auto& w : report.warnings) std::fprintf(stderr, "pgmcl: warning: %s\n", w.c_str());
-  const io::CarmenLog log = read_log(o.log, {}, o.strict);
+  if (o.log.empty() == o.bag.empty())
+    throw io::UsageError("localize: give the scans with --log (CARMEN) or --bag (ROS 1)");
+  const std::string& source = o.bag.empty() ? o.log : o.bag;
+  const io::CarmenLog log = o.bag.empty() ? read_log(o.log, {}, o.strict) : read_bag_log(o);
 
   job.map = &map;
   job.log = &log;
-  job.log_name = o.log;
+  job.log_name = source;
   if (!o.truth.empty()) job.truth = load_truth(o.truth);
   if (!o.relations.empty()) {
     job.relations = io::read_relations(o.relations);
@@ -65,7 +101,7 @@ int run_localize(const LocalizeOptions& o) {
     job.init.kind = InitialBelief::Kind::kTruth;
   }
   job.out_dir = o.out;
-  job.title = std::filesystem::path(o.log).filename().string();
+  job.title = std::filesystem::path(source).filename().string();
   job.quiet = o.quiet;
   const io::RunMetrics m = run_localization(job);
   std::printf("%s\n", summary_line(m, o.out).c_str());
@@ -80,9 +116,23 @@ Command add_localize_command(CLI::App& app) {
   sub->add_option("--map", o->map, "Map YAML (ROS map_server)")
       ->required()
       ->check(CLI::ExistingFile);
-  sub->add_option("--log", o->log, "CARMEN log (.log, .clf, optionally .gz)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  auto* log = sub->add_option("--log", o->log, "CARMEN log (.log, .clf, optionally .gz)")
+                  ->check(CLI::ExistingFile);
+  auto* bag = sub->add_option("--bag", o->bag, "ROS 1 bag (instead of --log)")
+                  ->check(CLI::ExistingFile)
+                  ->excludes(log);
+  sub->add_option("--scan-topic", o->scan_topic, "--bag: sensor_msgs/LaserScan topic")
+      ->capture_default_str()
+      ->needs(bag);
+  sub->add_option("--odom-topic", o->odom_topic,
+                  "--bag: nav_msgs/Odometry topic (default: odometry from /tf)")
+      ->needs(bag);
+  sub->add_option("--odom-frame", o->odom_frame, "--bag: odometry frame")
+      ->capture_default_str()
+      ->needs(bag);
+  sub->add_option("--base-frame", o->base_frame, "--bag: robot base frame")
+      ->capture_default_str()
+      ->needs(bag);
   sub->add_option("--config", o->config, "Filter configuration YAML")->check(CLI::ExistingFile);
   sub->add_option("--set", o->sets, "Override a config key, e.g. filter.particles=2000")
       ->take_all();

@@ -1,7 +1,9 @@
-// `pgmcl convert`: a CARMEN log as a ROS 1 bag and back (with PGMCL_WITH_ROS), or a clear
-// error in a build without ROS.
+// `pgmcl convert` (a CARMEN log as a ROS 1 bag and back) and `pgmcl localize --bag` with
+// PGMCL_WITH_ROS, or a clear error in a build without ROS.
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 
@@ -62,6 +64,43 @@ TEST(CliConvert, ErrorsNameWhatIsWrong) {
   EXPECT_EQ(r.err.find("pgmcl: error: junk.bag: "), 0u) << r.err;
 }
 
+TEST(CliLocalizeBag, SameAccuracyAsTheLogItWasConvertedFrom) {
+  TempDir dir("cli_localize_bag");
+  ASSERT_EQ(cli_test::map_room(dir, 60, "room.yaml").code, 0);
+  ASSERT_EQ(run_pgmcl("perturb --log corrected.log --odom-noise 0.01,0.001,0.01,0.001 --seed 4 "
+                      "--out raw.log --truth-out truth.tum",
+                      dir)
+                .code,
+            0);
+  ASSERT_EQ(run_pgmcl("convert --log raw.log --out raw.bag", dir).code, 0);
+  const std::string common =
+      " --map room.yaml --truth truth.tum --quiet --seed 3 --set filter.particles=300 --set "
+      "filter.kld.min_particles=100";
+  RunResult r = run_pgmcl("localize --log raw.log --out log" + common, dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = run_pgmcl("localize --bag raw.bag --out bag" + common, dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const YAML::Node a = YAML::LoadFile(dir.file("log/metrics.yaml"));
+  const YAML::Node b = YAML::LoadFile(dir.file("bag/metrics.yaml"));
+  EXPECT_EQ(a["updates"].as<int>(), b["updates"].as<int>());
+  EXPECT_LT(b["ate_rmse_m"].as<double>(), 0.05);
+  // The bag's angles are float32: the runs may differ in the last bits, not in accuracy.
+  EXPECT_NEAR(a["ate_rmse_m"].as<double>(), b["ate_rmse_m"].as<double>(), 0.005);
+  r = run_pgmcl("localize --bag raw.bag --odom-topic /odom --out odom" + common, dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NEAR(YAML::LoadFile(dir.file("odom/metrics.yaml"))["ate_rmse_m"].as<double>(),
+              b["ate_rmse_m"].as<double>(), 1e-9);
+  // Exactly one of --log and --bag; bag options need --bag.
+  r = run_pgmcl("localize --map room.yaml --out x --quiet", dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err, "pgmcl: error: localize: give the scans with --log (CARMEN) or --bag (ROS 1)\n");
+  EXPECT_EQ(run_pgmcl("localize --map room.yaml --log raw.log --bag raw.bag", dir).code, 2);
+  EXPECT_EQ(run_pgmcl("localize --map room.yaml --log raw.log --scan-topic /s", dir).code, 2);
+  r = run_pgmcl("localize --map room.yaml --bag raw.bag --base-frame body --out x --quiet", dir);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("raw.bag: /tf: no transform odom -> body"), std::string::npos) << r.err;
+}
+
 #else
 
 TEST(CliConvert, NeedsRos) {
@@ -73,6 +112,12 @@ TEST(CliConvert, NeedsRos) {
   EXPECT_EQ(r.err,
             "pgmcl: error: convert: this pgmcl was built without ROS 1 (PGMCL_WITH_ROS=OFF or "
             "the ROS packages missing): bags need librosbag-storage-dev\n");
+  cli_test::write_text(dir.file("x.bag"), "");
+  ASSERT_EQ(cli_test::map_room(dir, 10, "room.yaml").code, 0);
+  const RunResult l = run_pgmcl("localize --map room.yaml --bag x.bag --quiet", dir);
+  EXPECT_EQ(l.code, 1);
+  EXPECT_EQ(l.err.find("pgmcl: error: localize --bag: this pgmcl was built without ROS 1"), 0u)
+      << l.err;
 }
 
 #endif

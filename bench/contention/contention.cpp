@@ -29,7 +29,6 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <numbers>
 #include <string>
 #include <thread>
 #include <vector>
@@ -97,15 +96,7 @@ World make_world(const Options& o) {
   w.field = pb::make_table(w.grid, pgmcl::maps::TableKind::kIsotropic);
   w.free_cells = pgmcl::free_cell_indices(w.grid);
   const pgmcl::sims::RayCaster caster(w.grid);
-  const pgmcl::Pose2 c = pb::room_centre(spec, 3, 3);
-  constexpr int kPoses = 32;
-  for (int k = 0; k < kPoses; ++k) {
-    const double a = 2.0 * std::numbers::pi * k / kPoses;
-    const pgmcl::Pose2 p{c.x + 0.45 * std::cos(a), c.y + 0.45 * std::sin(a),
-                         pgmcl::wrap_angle(a + std::numbers::pi / 2)};
-    w.poses.push_back(p);
-    w.scans.push_back(pb::cast_scan(caster, p, 1081, 0.01, 100 + k));
-  }
+  pb::circle_drive(caster, pb::room_centre(spec, 3, 3), 32, w.poses, w.scans);
   return w;
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "app_util.hpp"
+#include "bag_input.hpp"
 #include "commands.hpp"
 #include "pgmcl/io/carmen_writer.hpp"
 #include "pgmcl/io/values.hpp"
@@ -19,10 +20,7 @@ namespace {
 struct ConvertOptions {
   std::string in;
   std::string out;
-  std::string scan_topic = "/scan";
-  std::string odom_topic;
-  std::string odom_frame = "odom";
-  std::string base_frame = "base_link";
+  BagInput bag;
   std::string laser_frame = "laser";
   double time_offset = 0.0;
   bool strict = false;
@@ -30,14 +28,14 @@ struct ConvertOptions {
 
 int run_convert(const ConvertOptions& o) {
 #ifdef PGMCL_HAVE_ROS
-  const bool bag_in = rosbag_io::is_bag_path(o.in), bag_out = rosbag_io::is_bag_path(o.out);
+  const bool bag_in = is_bag_path(o.in), bag_out = is_bag_path(o.out);
   if (!bag_in && bag_out && is_carmen_path(o.in)) {
     const io::CarmenLog log = read_log(o.in, {}, o.strict);
     rosbag_io::BagWriteOptions w;
-    w.scan_topic = o.scan_topic;
-    w.odom_topic = o.odom_topic.empty() ? "/odom" : o.odom_topic;
-    w.odom_frame = o.odom_frame;
-    w.base_frame = o.base_frame;
+    w.scan_topic = o.bag.scan_topic;
+    w.odom_topic = o.bag.odom_topic.empty() ? "/odom" : o.bag.odom_topic;
+    w.odom_frame = o.bag.odom_frame;
+    w.base_frame = o.bag.base_frame;
     w.laser_frame = o.laser_frame;
     w.time_offset = o.time_offset;
     ensure_parent_directory(o.out);
@@ -53,22 +51,11 @@ int run_convert(const ConvertOptions& o) {
     return 0;
   }
   if (bag_in && !bag_out && is_carmen_path(o.out)) {
-    rosbag_io::BagReadOptions rd;
-    rd.scan_topic = o.scan_topic;
-    rd.odom_topic = o.odom_topic;
-    rd.odom_frame = o.odom_frame;
-    rd.base_frame = o.base_frame;
-    rosbag_io::BagReadReport report;
-    const io::CarmenLog log = rosbag_io::read_bag(o.in, rd, &report);
-    for (const std::string& n : report.notes)
-      std::fprintf(stderr, "pgmcl: %s: %s\n", o.in.c_str(), n.c_str());
+    const io::CarmenLog log = read_bag_input(o.in, o.bag, "convert");
     ensure_parent_directory(o.out);
     io::write_carmen(o.out, log);
-    std::printf("convert: wrote %zu scans and %zu odometry poses to %s", log.scans.size(),
+    std::printf("convert: wrote %zu scans and %zu odometry poses to %s\n", log.scans.size(),
                 log.odometry.size(), o.out.c_str());
-    if (report.outside_odometry > 0)
-      std::printf("; %zu scans lie outside the odometry's time span", report.outside_odometry);
-    std::printf("\n");
     return 0;
   }
   throw io::UsageError(
@@ -76,9 +63,7 @@ int run_convert(const ConvertOptions& o) {
       "CARMEN log (.log or .clf, optionally .gz)");
 #else
   (void)o;
-  throw std::runtime_error(
-      "convert: this pgmcl was built without ROS 1 (PGMCL_WITH_ROS=OFF or "
-      "the ROS packages missing): bags need librosbag-storage-dev");
+  throw_without_ros("convert");
 #endif
 }
 
@@ -92,12 +77,7 @@ Command add_convert_command(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile);
   sub->add_option("--out", o->out, "Output: a .bag, or a CARMEN log for a bag input")->required();
-  sub->add_option("--scan-topic", o->scan_topic, "LaserScan topic")->capture_default_str();
-  sub->add_option("--odom-topic", o->odom_topic,
-                  "nav_msgs/Odometry topic (written: /odom by default; read: odometry from "
-                  "/tf unless given)");
-  sub->add_option("--odom-frame", o->odom_frame, "Odometry frame")->capture_default_str();
-  sub->add_option("--base-frame", o->base_frame, "Robot base frame")->capture_default_str();
+  add_bag_input_options(*sub, o->bag, nullptr);
   sub->add_option("--laser-frame", o->laser_frame, "Laser frame (written bags)")
       ->capture_default_str();
   sub->add_option("--time-offset", o->time_offset,

@@ -13,15 +13,13 @@
 #include <vector>
 
 #include "app_util.hpp"
+#include "bag_input.hpp"
 #include "commands.hpp"
 #include "localize_pipeline.hpp"
 #include "pgmcl/config/config_yaml.hpp"
 #include "pgmcl/io/relations.hpp"
 #include "pgmcl/io/values.hpp"
 #include "pgmcl/map_io/map_io.hpp"
-#ifdef PGMCL_HAVE_ROS
-#include "pgmcl/rosbag_io/rosbag_io.hpp"
-#endif
 
 namespace pgmcl::app {
 namespace {
@@ -30,10 +28,7 @@ struct LocalizeOptions {
   std::string map;
   std::string log;
   std::string bag;
-  std::string scan_topic = "/scan";
-  std::string odom_topic;
-  std::string odom_frame = "odom";
-  std::string base_frame = "base_link";
+  BagInput bag_input;
   std::string config;
   std::vector<std::string> sets;
   std::string init;
@@ -50,28 +45,6 @@ struct LocalizeOptions {
   bool quiet = false;
 };
 
-/// The bag's scans and odometry as the log the replay takes.
-io::CarmenLog read_bag_log(const LocalizeOptions& o) {
-#ifdef PGMCL_HAVE_ROS
-  rosbag_io::BagReadOptions opt;
-  opt.scan_topic = o.scan_topic;
-  opt.odom_topic = o.odom_topic;
-  opt.odom_frame = o.odom_frame;
-  opt.base_frame = o.base_frame;
-  rosbag_io::BagReadReport report;
-  io::CarmenLog log = rosbag_io::read_bag(o.bag, opt, &report);
-  if (report.outside_odometry > 0)
-    std::fprintf(stderr, "pgmcl: warning: %s: %zu scan(s) outside the odometry's time span\n",
-                 o.bag.c_str(), report.outside_odometry);
-  return log;
-#else
-  (void)o;
-  throw std::runtime_error(
-      "localize --bag: this pgmcl was built without ROS 1 (PGMCL_WITH_ROS="
-      "OFF or the ROS packages missing): bags need librosbag-storage-dev");
-#endif
-}
-
 int run_localize(const LocalizeOptions& o) {
   LocalizeJob job;
   if (!o.config.empty()) io::read_localizer_config(o.config, job.config);
@@ -85,7 +58,8 @@ int run_localize(const LocalizeOptions& o) {
   if (o.log.empty() == o.bag.empty())
     throw io::UsageError("localize: give the scans with --log (CARMEN) or --bag (ROS 1)");
   const std::string& source = o.bag.empty() ? o.log : o.bag;
-  const io::CarmenLog log = o.bag.empty() ? read_log(o.log, {}, o.strict) : read_bag_log(o);
+  const io::CarmenLog log = o.bag.empty() ? read_log(o.log, {}, o.strict)
+                                          : read_bag_input(o.bag, o.bag_input, "localize --bag");
 
   job.map = &map;
   job.log = &log;
@@ -121,18 +95,7 @@ Command add_localize_command(CLI::App& app) {
   auto* bag = sub->add_option("--bag", o->bag, "ROS 1 bag (instead of --log)")
                   ->check(CLI::ExistingFile)
                   ->excludes(log);
-  sub->add_option("--scan-topic", o->scan_topic, "--bag: sensor_msgs/LaserScan topic")
-      ->capture_default_str()
-      ->needs(bag);
-  sub->add_option("--odom-topic", o->odom_topic,
-                  "--bag: nav_msgs/Odometry topic (default: odometry from /tf)")
-      ->needs(bag);
-  sub->add_option("--odom-frame", o->odom_frame, "--bag: odometry frame")
-      ->capture_default_str()
-      ->needs(bag);
-  sub->add_option("--base-frame", o->base_frame, "--bag: robot base frame")
-      ->capture_default_str()
-      ->needs(bag);
+  add_bag_input_options(*sub, o->bag_input, bag);
   sub->add_option("--config", o->config, "Filter configuration YAML")->check(CLI::ExistingFile);
   sub->add_option("--set", o->sets, "Override a config key, e.g. filter.particles=2000")
       ->take_all();

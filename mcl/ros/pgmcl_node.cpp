@@ -23,18 +23,11 @@
 #include <vector>
 
 #include "node_core.hpp"
+#include "pgmcl/rosbag_io/ros1_messages.hpp"
 
 namespace pgmcl::ros1 {
 namespace {
 
-Rigid to_rigid(const geometry_msgs::Transform& t) {
-  return {t.translation.x, t.translation.y, t.translation.z, t.rotation.x,
-          t.rotation.y,    t.rotation.z,    t.rotation.w};
-}
-Rigid to_rigid(const geometry_msgs::Pose& p) {
-  return {p.position.x,    p.position.y,    p.position.z,   p.orientation.x,
-          p.orientation.y, p.orientation.z, p.orientation.w};
-}
 geometry_msgs::Quaternion yaw_quaternion(double yaw) {
   geometry_msgs::Quaternion q;
   q.z = std::sin(yaw / 2);
@@ -135,7 +128,7 @@ class PgmclNode {
   void on_map(const nav_msgs::OccupancyGridConstPtr& msg) {
     if (opt_.first_map_only && core_.has_map()) return;
     Grid g{static_cast<int>(msg->info.width), static_cast<int>(msg->info.height),
-           msg->info.resolution, to_rigid(msg->info.origin), msg->data};
+           msg->info.resolution, from_msg(msg->info.origin), msg->data};
     try {
       core_.set_map(g, strip_slash(msg->header.frame_id));
     } catch (const std::exception& e) {
@@ -150,7 +143,7 @@ class PgmclNode {
   std::optional<Rigid> lookup(const std::string& target, const std::string& source,
                               const ros::Time& t, double timeout) {
     try {
-      return to_rigid(buffer_.lookupTransform(target, source, t, ros::Duration(timeout)).transform);
+      return from_msg(buffer_.lookupTransform(target, source, t, ros::Duration(timeout)).transform);
     } catch (const tf2::TransformException& e) {
       ROS_DEBUG("pgmcl: %s", e.what());
       return std::nullopt;
@@ -274,7 +267,7 @@ class PgmclNode {
     std::array<double, 36> cov{};
     for (std::size_t i = 0; i < 36; ++i) cov[i] = msg->pose.covariance[i];
     try {
-      core_.set_initial_pose(to_rigid(msg->pose.pose), cov, odom);
+      core_.set_initial_pose(from_msg(msg->pose.pose), cov, odom);
     } catch (const std::exception& e) {
       ROS_WARN("pgmcl: initial pose refused: %s", e.what());
       return;

@@ -66,12 +66,7 @@ TEST(CliConvert, ErrorsNameWhatIsWrong) {
 
 TEST(CliLocalizeBag, SameAccuracyAsTheLogItWasConvertedFrom) {
   TempDir dir("cli_localize_bag");
-  ASSERT_EQ(cli_test::map_room(dir, 60, "room.yaml").code, 0);
-  ASSERT_EQ(run_pgmcl("perturb --log corrected.log --odom-noise 0.01,0.001,0.01,0.001 --seed 4 "
-                      "--out raw.log --truth-out truth.tum",
-                      dir)
-                .code,
-            0);
+  cli_test::prepare_localize_case(dir);
   ASSERT_EQ(run_pgmcl("convert --log raw.log --out raw.bag", dir).code, 0);
   const std::string common =
       " --map room.yaml --truth truth.tum --quiet --seed 3 --set filter.particles=300 --set "

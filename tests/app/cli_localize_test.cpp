@@ -17,15 +17,7 @@ using cli_test::run_pgmcl;
 using cli_test::RunResult;
 using cli_test::TempDir;
 
-/// room.yaml (mapped from the exact log), raw.log (noisy odometry), truth.tum.
-void prepare(const TempDir& dir) {
-  ASSERT_EQ(cli_test::map_room(dir, 60, "room.yaml").code, 0);
-  ASSERT_EQ(run_pgmcl("perturb --log corrected.log --odom-noise 0.01,0.001,0.01,0.001 --seed 4 "
-                      "--out raw.log --truth-out truth.tum",
-                      dir)
-                .code,
-            0);
-}
+using cli_test::prepare_localize_case;
 
 constexpr const char* kSmall =
     " --set filter.particles=300 --set filter.global_particles=3000 --set "
@@ -33,7 +25,7 @@ constexpr const char* kSmall =
 
 TEST(CliLocalize, TracksTheSyntheticRoomAndWritesEveryOutput) {
   TempDir dir("cli_localize_room");
-  prepare(dir);
+  prepare_localize_case(dir);
   const RunResult r = run_pgmcl(
       std::string("localize --map room.yaml --log raw.log --truth truth.tum --out out --quiet "
                   "--seed 3") +
@@ -62,7 +54,7 @@ TEST(CliLocalize, TracksTheSyntheticRoomAndWritesEveryOutput) {
 
 TEST(CliLocalize, GlobalLocalisationFindsTheRobot) {
   TempDir dir("cli_localize_global");
-  prepare(dir);
+  prepare_localize_case(dir);
   const RunResult r = run_pgmcl(
       std::string("localize --map room.yaml --log raw.log --truth truth.tum --global --out out "
                   "--quiet") +
@@ -88,7 +80,7 @@ TEST(CliLocalize, GlobalLocalisationFindsTheRobot) {
 
 TEST(CliLocalize, BadConfigAndOptionsAreReportedPrecisely) {
   TempDir dir("cli_localize_errors");
-  prepare(dir);
+  prepare_localize_case(dir);
   cli_test::write_text(dir.file("cfg.yaml"), "filter:\n  particels: 100\n");
   RunResult r = run_pgmcl("localize --map room.yaml --log raw.log --config cfg.yaml", dir);
   EXPECT_EQ(r.code, 1);

@@ -54,6 +54,14 @@ struct Drive {
   }
 };
 
+/// An adapter started at the first true pose with `sxy` / `sth` standard deviations.
+NavLocalizer started(const Drive& d, double sxy, double sth,
+                     const NavConfig& cfg = small_config()) {
+  NavLocalizer nav(d.world.grid, cfg);
+  nav.set_initial_pose(d.truth[0], diag(sxy, sth));
+  return nav;
+}
+
 Eigen::Isometry3d upside_down_mount(const Pose2& p) {
   Eigen::Isometry3d t = to_isometry(p);
   t.translation().z() = 0.4;
@@ -65,8 +73,7 @@ TEST(NavLocalizer, TracksAndPublishesAConsistentMapToOdom) {
   const Drive d;
   NavConfig cfg = small_config();
   cfg.transform_tolerance = 0.25;
-  NavLocalizer nav(d.world.grid, cfg);
-  nav.set_initial_pose(d.truth[0], diag(0.1, 0.05));
+  NavLocalizer nav = started(d, 0.1, 0.05, cfg);
   double worst = 0.0;
   std::size_t poses = 0;
   for (std::size_t k = 0; k < d.truth.size(); ++k) {
@@ -104,10 +111,7 @@ TEST(NavLocalizer, TracksAndPublishesAConsistentMapToOdom) {
 // opposite angular order, reach the engine as the same scan: identical results.
 TEST(NavLocalizer, UpsideDownLaserGivesTheSameResultsAsUpright) {
   const Drive d;
-  NavLocalizer upright(d.world.grid, small_config());
-  NavLocalizer flipped(d.world.grid, small_config());
-  upright.set_initial_pose(d.truth[0], diag(0.1, 0.05));
-  flipped.set_initial_pose(d.truth[0], diag(0.1, 0.05));
+  NavLocalizer upright = started(d, 0.1, 0.05), flipped = started(d, 0.1, 0.05);
   for (std::size_t k = 0; k < 80; ++k) {
     const ScanOutcome a = upright.process_scan(d.upright(k));
     ScanInput in = d.upright(k);
@@ -125,10 +129,7 @@ TEST(NavLocalizer, UpsideDownLaserGivesTheSameResultsAsUpright) {
 
 TEST(NavLocalizer, ReversedScanOrderTracksTheSame) {
   const Drive d;
-  NavLocalizer forward(d.world.grid, small_config());
-  NavLocalizer reversed(d.world.grid, small_config());
-  forward.set_initial_pose(d.truth[0], diag(0.05, 0.03));
-  reversed.set_initial_pose(d.truth[0], diag(0.05, 0.03));
+  NavLocalizer forward = started(d, 0.05, 0.03), reversed = started(d, 0.05, 0.03);
   for (std::size_t k = 0; k < 60; ++k) {
     (void)forward.process_scan(d.upright(k));
     ScanInput in = d.upright(k);
@@ -149,8 +150,7 @@ TEST(NavLocalizer, InitialPoseIsMovedByTheOdometrySinceItsStamp) {
   const Drive d;
   NavConfig cfg = small_config();
   cfg.filter.gating.enabled = false;  // every scan updates: the reference is the last scan
-  NavLocalizer nav(d.world.grid, cfg);
-  nav.set_initial_pose(d.truth[0], diag(0.05, 0.02));
+  NavLocalizer nav = started(d, 0.05, 0.02, cfg);
   for (std::size_t k = 0; k <= 30; ++k) (void)nav.process_scan(d.upright(k));
   // A pose given for step 20's stamp, with the odometry at that stamp: the filter's pose
   // now (step 30) is (pose ∘ odom_20^-1) ∘ odom_30.
@@ -185,8 +185,7 @@ TEST(NavLocalizer, InitialPoseBeforeTheFirstScanIsAppliedAtItsOdometry) {
 
 TEST(NavLocalizer, NoMotionUpdateOnRequest) {
   const Drive d;
-  NavLocalizer nav(d.world.grid, small_config());
-  nav.set_initial_pose(d.truth[0], diag(0.05, 0.02));
+  NavLocalizer nav = started(d, 0.05, 0.02);
   ScanInput in = d.upright(0);
   EXPECT_TRUE(nav.process_scan(in).pose_ready);  // the first scan always updates
   in.stamp += 1.0;
@@ -208,8 +207,7 @@ TEST(NavLocalizer, EveryNthScanAndForcedUpdatesBypassTheStride) {
   NavConfig cfg = small_config();
   cfg.scan_stride = 3;
   cfg.filter.gating.enabled = false;
-  NavLocalizer nav(d.world.grid, cfg);
-  nav.set_initial_pose(d.truth[0], diag(0.05, 0.02));
+  NavLocalizer nav = started(d, 0.05, 0.02, cfg);
   std::vector<bool> filtered;
   for (std::size_t k = 0; k < 9; ++k) filtered.push_back(nav.process_scan(d.upright(k)).filtered);
   EXPECT_EQ(filtered,
@@ -225,8 +223,7 @@ TEST(NavLocalizer, EveryNthScanAndForcedUpdatesBypassTheStride) {
 
 TEST(NavLocalizer, GlobalLocalisationOnRequestSpreadsTheParticles) {
   const Drive d;
-  NavLocalizer nav(d.world.grid, small_config());
-  nav.set_initial_pose(d.truth[0], diag(0.05, 0.02));
+  NavLocalizer nav = started(d, 0.05, 0.02);
   (void)nav.process_scan(d.upright(0));
   nav.global_localize();
   std::vector<WeightedPose> cloud;
@@ -268,8 +265,7 @@ TEST(NavLocalizer, BadScansAreCountedNotThrown) {
 
 TEST(NavLocalizer, NewMapInTheSameFrameKeepsTheParticles) {
   const Drive d;
-  NavLocalizer nav(d.world.grid, small_config());
-  nav.set_initial_pose(d.truth[0], diag(0.1, 0.05));
+  NavLocalizer nav = started(d, 0.1, 0.05);
   for (std::size_t k = 0; k < 20; ++k) (void)nav.process_scan(d.upright(k));
   std::vector<WeightedPose> before, after;
   nav.particles(before);
@@ -308,8 +304,7 @@ TEST(NavLocalizer, StoresTheLastPoseAtTheConfiguredPeriod) {
   const Drive d;
   NavConfig cfg = small_config();
   cfg.save_pose_period = 2.0;
-  NavLocalizer nav(d.world.grid, cfg);
-  nav.set_initial_pose(d.truth[0], diag(0.1, 0.05));
+  NavLocalizer nav = started(d, 0.1, 0.05, cfg);
   EXPECT_FALSE(nav.pose_to_store(0.0));  // nothing measured yet
   (void)nav.process_scan(d.upright(0));
   const auto first = nav.pose_to_store(10.0);

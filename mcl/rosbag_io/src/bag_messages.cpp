@@ -13,36 +13,17 @@
 #include <stdexcept>
 
 #include "pgmcl/rosbag_io/ros1_bridge.hpp"
+#include "pgmcl/rosbag_io/ros1_messages.hpp"
 
 namespace pgmcl::ros1 {
 namespace {
-
-Rigid from_msg(const geometry_msgs::Transform& t) {
-  return {t.translation.x, t.translation.y, t.translation.z, t.rotation.x,
-          t.rotation.y,    t.rotation.z,    t.rotation.w};
-}
-Rigid from_msg(const geometry_msgs::Pose& p) {
-  return {p.position.x,    p.position.y,    p.position.z,   p.orientation.x,
-          p.orientation.y, p.orientation.z, p.orientation.w};
-}
-geometry_msgs::Transform to_transform(const Rigid& r) {
-  geometry_msgs::Transform t;
-  t.translation.x = r.x;
-  t.translation.y = r.y;
-  t.translation.z = r.z;
-  t.rotation.x = r.qx;
-  t.rotation.y = r.qy;
-  t.rotation.z = r.qz;
-  t.rotation.w = r.qw;
-  return t;
-}
 
 geometry_msgs::TransformStamped stamped(const StampedTransform& t) {
   geometry_msgs::TransformStamped ts;
   ts.header.stamp = ros::Time(t.stamp);
   ts.header.frame_id = t.parent;
   ts.child_frame_id = t.child;
-  ts.transform = to_transform(t.transform);
+  ts.transform = to_transform_msg(t.transform);
   return ts;
 }
 
@@ -122,7 +103,7 @@ void write_bag_messages(const std::string& path, const BagMessages& m,
       msg.header.stamp = ros::Time(o.stamp);
       msg.header.frame_id = o.frame_id;
       msg.child_frame_id = o.child_frame_id;
-      const geometry_msgs::Transform t = to_transform(o.pose);
+      const geometry_msgs::Transform t = to_transform_msg(o.pose);
       msg.pose.pose.position.x = t.translation.x;
       msg.pose.pose.position.y = t.translation.y;
       msg.pose.pose.position.z = t.translation.z;

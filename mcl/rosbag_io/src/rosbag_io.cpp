@@ -88,10 +88,6 @@ ros1::Rigid to_rigid(const Pose2& p) {
   return {p.x, p.y, 0.0, 0.0, 0.0, std::sin(p.theta / 2), std::cos(p.theta / 2)};
 }
 
-bool is_bag_path(const std::string& path) {
-  return path.size() > 4 && path.compare(path.size() - 4, 4, ".bag") == 0;
-}
-
 io::CarmenLog read_bag(const std::string& path, const BagReadOptions& opt, BagReadReport* report) {
   ros1::BagMessages m;
   try {

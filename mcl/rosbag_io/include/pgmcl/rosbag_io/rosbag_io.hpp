@@ -73,7 +73,4 @@ BagWriteReport write_bag(const io::CarmenLog& log, const std::string& path,
 [[nodiscard]] Eigen::Isometry3d to_isometry(const ros1::Rigid& r);
 [[nodiscard]] ros1::Rigid to_rigid(const Pose2& p);
 
-/// True for "*.bag".
-[[nodiscard]] bool is_bag_path(const std::string& path);
-
 }  // namespace pgmcl::rosbag_io

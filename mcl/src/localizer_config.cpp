@@ -62,15 +62,15 @@ class Validator {
 
 std::string Bounds::text() const {
   const bool has_lo = lo != -kInf, has_hi = hi != kInf;
-  if (has_lo && has_hi)
-    return "in " + interval(format_number(lo), format_number(hi), lo_open, hi_open);
+  if (has_lo && has_hi) return "in " + interval(format_number(lo), format_number(hi), lo_open, hi_open);
   if (has_lo) return std::string("finite and ") + (lo_open ? "> " : ">= ") + format_number(lo);
   if (has_hi) return std::string("finite and ") + (hi_open ? "< " : "<= ") + format_number(hi);
   return "finite";
 }
 
 std::string IntRange::text() const {
-  if (hi == std::numeric_limits<std::uint64_t>::max()) return "an integer >= " + std::to_string(lo);
+  if (hi == std::numeric_limits<std::uint64_t>::max())
+    return "an integer >= " + std::to_string(lo);
   return "an integer in " + interval(std::to_string(lo), std::to_string(hi), false, false);
 }
 

@@ -51,10 +51,10 @@ inline constexpr Bounds kAnyFinite{};
 inline constexpr Bounds kPositive{0.0, kInf, true, false};
 inline constexpr Bounds kNonNegative{0.0, kInf, false, false};
 inline constexpr Bounds kNegative{-kInf, 0.0, false, true};
-inline constexpr Bounds kUnit{0.0, 1.0, false, false};      ///< [0, 1]
-inline constexpr Bounds kOpenUnit{0.0, 1.0, true, true};    ///< (0, 1)
-inline constexpr Bounds kUpperUnit{0.0, 1.0, true, false};  ///< (0, 1]
-inline constexpr Bounds kLowerUnit{0.0, 1.0, false, true};  ///< [0, 1)
+inline constexpr Bounds kUnit{0.0, 1.0, false, false};        ///< [0, 1]
+inline constexpr Bounds kOpenUnit{0.0, 1.0, true, true};      ///< (0, 1)
+inline constexpr Bounds kUpperUnit{0.0, 1.0, true, false};    ///< (0, 1]
+inline constexpr Bounds kLowerUnit{0.0, 1.0, false, true};    ///< [0, 1)
 
 /// Allowed values of an integer field, inclusive.
 struct IntRange {
@@ -155,8 +155,8 @@ void describe_likelihood(V& v, Config& c) {
                kPositive);
       v.number(Field{"isotropy_tolerance", "", "oriented falls back to isotropic below this"},
                t.isotropy_tolerance, kNonNegative);
-      v.integer(Field{"max_table_bytes", "bytes", "a larger table is an error"}, t.max_table_bytes,
-                IntRange{1});
+      v.integer(Field{"max_table_bytes", "bytes", "a larger table is an error"},
+                t.max_table_bytes, IntRange{1});
     });
     v.number(Field{"effective_beams", "", "independent readings a scan is worth; <= 0: tempering"},
              l.effective_beams, kAnyFinite);
@@ -185,8 +185,8 @@ template <class V, class Config>
 void describe_filter(V& v, Config& c) {
   auto& f = c.filter;
   v.section("filter", [&] {
-    v.integer(Field{"particles", "", "after set_pose(); the fixed count without KLD"}, f.particles,
-              kParticleCount);
+    v.integer(Field{"particles", "", "after set_pose(); the fixed count without KLD"},
+              f.particles, kParticleCount);
     v.integer(Field{"global_particles", "", "after global_localize() and at construction"},
               f.global_particles, kParticleCount);
     v.number(Field{"resample_threshold", "", "resample when N_eff < this x N"},
@@ -204,7 +204,8 @@ void describe_filter(V& v, Config& c) {
       v.number(Field{"epsilon", "", "KL bound"}, k.epsilon, kPositive);
       v.number(Field{"delta", "", "z = normal quantile of 1 - delta"}, k.delta, kOpenUnit);
       v.number(Field{"bin_xy", "m", "histogram bin side in x and y"}, k.bin_xy, kPositive);
-      v.number(Field{"bin_theta", "rad", "histogram bin width in heading"}, k.bin_theta, kPositive);
+      v.number(Field{"bin_theta", "rad", "histogram bin width in heading"}, k.bin_theta,
+               kPositive);
     });
     v.section("recovery", [&] {
       auto& r = f.recovery;
@@ -234,7 +235,8 @@ void describe_gating_and_estimate(V& v, Config& c) {
   });
   v.section("estimate", [&] {
     auto& e = c.estimate;
-    v.number(Field{"cluster_xy", "m", "clustering cell side in x and y"}, e.cluster_xy, kPositive);
+    v.number(Field{"cluster_xy", "m", "clustering cell side in x and y"}, e.cluster_xy,
+             kPositive);
     v.number(Field{"cluster_theta", "rad", "clustering cell width in heading"}, e.cluster_theta,
              kPositive);
     v.number(Field{"converged_weight", "", "converged: the best cluster holds more than this"},
@@ -258,7 +260,8 @@ void describe_hypotheses(V& v, Config& c) {
       v.integer(Field{"root_levels", "", "root node side = leaf x 2^root_levels"}, s.root_levels,
                 IntRange{1, 12});
       v.integer(Field{"max_beams", "", "beams the search scores"}, s.max_beams, IntRange{1});
-      v.number(Field{"min_angle_step", "rad", "finest heading step"}, s.min_angle_step, kPositive);
+      v.number(Field{"min_angle_step", "rad", "finest heading step"}, s.min_angle_step,
+               kPositive);
       v.number(Field{"max_angle_step", "rad", "coarsest heading step"}, s.max_angle_step,
                kPositive);
       v.rule("max_angle_step", s.max_angle_step >= s.min_angle_step,
@@ -270,14 +273,14 @@ void describe_hypotheses(V& v, Config& c) {
              h.global_seed_fraction, kUnit);
     v.number(Field{"candidate_margin", "nats", "global candidates within this of the best"},
              h.candidate_margin, kNonNegative);
-    v.integer(Field{"global_budget", "lookups", "beam lookups per global search"}, h.global_budget,
-              IntRange{1});
+    v.integer(Field{"global_budget", "lookups", "beam lookups per global search"},
+              h.global_budget, IntRange{1});
     v.integer(Field{"max_competitors", "", "hypotheses tracked beside the estimate"},
               h.max_competitors, IntRange{0, 1000});
     v.number(Field{"switch_evidence", "nats", "tempered evidence a competitor needs to win"},
              h.switch_evidence, kPositive);
-    v.number(Field{"drop_evidence", "nats", "a competitor below this is dropped"}, h.drop_evidence,
-             kNegative);
+    v.number(Field{"drop_evidence", "nats", "a competitor below this is dropped"},
+             h.drop_evidence, kNegative);
     v.number(Field{"switch_seed_fraction", "", "particles redrawn around a winner"},
              h.switch_seed_fraction, kUnit);
     v.number(Field{"rival_view", "m", "new view a globally proposed place must stay ahead"},
@@ -285,14 +288,14 @@ void describe_hypotheses(V& v, Config& c) {
     v.number(Field{"rescue_fit_ratio", "", "search around the prediction below this x its fit"},
              h.rescue_fit_ratio, kUnit);
     v.number(Field{"rescue_xy", "m", "half-width of that search"}, h.rescue_xy, kNonNegative);
-    v.number(Field{"rescue_theta", "rad", "half-width of that search in heading"}, h.rescue_theta,
-             kNonNegative);
-    v.integer(Field{"rescue_budget", "lookups", "beam lookups per rescue search"}, h.rescue_budget,
-              IntRange{1});
+    v.number(Field{"rescue_theta", "rad", "half-width of that search in heading"},
+             h.rescue_theta, kNonNegative);
+    v.integer(Field{"rescue_budget", "lookups", "beam lookups per rescue search"},
+              h.rescue_budget, IntRange{1});
     v.number(Field{"sweep_share", "", "map sweep lookups per update / the particles' own"},
              h.sweep_share, kNonNegative);
-    v.number(Field{"separation_xy", "m", "closer hypotheses are the same place"}, h.separation_xy,
-             kPositive);
+    v.number(Field{"separation_xy", "m", "closer hypotheses are the same place"},
+             h.separation_xy, kPositive);
     v.number(Field{"separation_theta", "rad", "closer headings are the same place"},
              h.separation_theta, kPositive);
   });

@@ -6,7 +6,7 @@
 # is gone), so translation units that include them are built as C++17 and talk to the
 # C++20 code through plain-type bridge headers (mcl/rosbag_io, mcl/ros).
 set(PGMCL_HAVE_ROS OFF)
-set(PGMCL_HAVE_ROS OFF CACHE INTERNAL "ROS 1 parts built (read by cmake/demo.sh)")
+set(PGMCL_ROS_BUILT OFF CACHE INTERNAL "The ROS 1 parts are built (cmake/demo.sh reads it)")
 if(NOT PGMCL_WITH_ROS)
   return()
 endif()
@@ -49,7 +49,7 @@ if(_missing)
   return()
 endif()
 set(PGMCL_HAVE_ROS ON)
-set(PGMCL_HAVE_ROS ON CACHE INTERNAL "ROS 1 parts built (read by cmake/demo.sh)")
+set(PGMCL_ROS_BUILT ON CACHE INTERNAL "The ROS 1 parts are built (cmake/demo.sh reads it)")
 message(STATUS "pgmcl: ROS 1 found (roscpp ${PGMCL_ROSCPP_roscpp_VERSION}): building pgmcl_node "
   "and the rosbag I/O")
 

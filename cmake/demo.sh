@@ -7,8 +7,14 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash cmake/setup.sh
 jobs=${PGMCL_JOBS:-2}
-cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release -DPGMCL_WITH_ROS=ON >/dev/null
+cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release -DPGMCL_WITH_PYTHON=ON \
+  -DPGMCL_WITH_ROS=ON >/dev/null
 cmake --build build/release -j"$jobs" --target pgmcl
+# The Python module (build/release/python/pgmcl) when its packages are there (setup.sh).
+python=$(sed -n 's/^PGMCL_PYTHON_BUILT:INTERNAL=//p' build/release/CMakeCache.txt)
+if [[ $python == ON ]]; then
+  cmake --build build/release -j"$jobs" --target pgmcl_python
+fi
 pgmcl=build/release/pgmcl
 out=out/demo
 mkdir -p "$out/intel"
@@ -19,7 +25,8 @@ $pgmcl perturb --log data/logs/intel-corrected.log.gz --odom-noise 0.005,0.0005,
   --seed 1 --out "$out/intel/raw.log.gz" --truth-out "$out/intel/truth.tum"
 $pgmcl run configs/experiments/intel-demo.yaml --out "$out/intel/tracking"
 
-if grep -q '^PGMCL_HAVE_ROS:INTERNAL=ON' build/release/CMakeCache.txt; then
+ros=$(sed -n 's/^PGMCL_ROS_BUILT:INTERNAL=//p' build/release/CMakeCache.txt)
+if [[ $ros == ON ]]; then
   echo "== The same case as a ROS 1 bag: pgmcl convert, then pgmcl localize --bag (no master)"
   $pgmcl convert --log "$out/intel/raw.log.gz" --out "$out/intel/raw.bag"
   $pgmcl localize --map "$out/intel/map.yaml" --bag "$out/intel/raw.bag" \
@@ -32,5 +39,10 @@ fi
 
 echo "== Simulated UTM-30LX scene (the paper's sensor, 1081 beams)"
 $pgmcl run configs/experiments/lab.yaml --out "$out/utm-lab"
+
+if [[ $python == ON ]]; then
+  echo "== From Python (README): the Intel case again, ATE RMSE in metres"
+  PYTHONPATH=build/release/python /usr/bin/python3 -c "import pgmcl; print(pgmcl.localize('out/demo/intel/map.yaml', 'out/demo/intel/raw.log.gz', truth='out/demo/intel/truth.tum', seed=1).metrics['ate_rmse_m'])"
+fi
 
 echo "== Results in $out/ (trajectory.tum, metrics.yaml, overlay.png, error.png per run)"

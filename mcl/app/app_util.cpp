@@ -29,23 +29,9 @@ void ensure_parent_directory(const std::string& file) {
   if (!parent.empty()) ensure_directory(parent.string());
 }
 
-bool is_carmen_path(const std::string& path) {
-  std::string p = path;
-  if (p.size() > 3 && p.compare(p.size() - 3, 3, ".gz") == 0) p.resize(p.size() - 3);
-  auto ends = [&p](const char* ext) {
-    const std::string e(ext);
-    return p.size() > e.size() && p.compare(p.size() - e.size(), e.size(), e) == 0;
-  };
-  return ends(".log") || ends(".clf");
-}
-
 io::Trajectory load_truth(const std::string& path) {
-  if (!is_carmen_path(path)) return io::read_tum(path);
-  const io::CarmenLog log = read_log(path, {}, false);
-  for (const auto& s : log.scans) {
-    if (s.has_poses) return io::scan_truth(log, s.message);
-  }
-  throw io::UsageError(path + ": no laser scans with poses to take as ground truth");
+  if (!io::is_carmen_path(path)) return io::read_tum(path);
+  return io::log_truth(read_log(path, {}, false), path);
 }
 
 namespace {

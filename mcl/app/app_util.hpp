@@ -25,11 +25,8 @@ void ensure_parent_directory(const std::string& file);
 [[nodiscard]] io::CarmenLog read_log(const std::string& path, const io::CarmenReadOptions& opt,
                                      bool strict);
 
-/// True for CARMEN log names: *.log, *.clf, optionally followed by .gz.
-[[nodiscard]] bool is_carmen_path(const std::string& path);
-
 /// Ground truth from a TUM file, or from a CARMEN log (the robot poses of its laser scans,
-/// io::scan_truth, of the first laser message type with poses), chosen by is_carmen_path.
+/// io::scan_truth, of the first laser message type with poses), chosen by io::is_carmen_path.
 [[nodiscard]] io::Trajectory load_truth(const std::string& path);
 
 /// CLI11 checks with short messages ("must be > 0" rather than CLI11's range dump).

@@ -19,53 +19,80 @@ std::string num(double v) {
   return buf;
 }
 
-/// Rows of (key, value text, unit) shared by the YAML and the table.
+std::string text_of(const MetricEntry& e) {
+  switch (e.kind) {
+    case MetricEntry::Kind::kCount:
+      return std::to_string(e.count);
+    case MetricEntry::Kind::kNull:
+      return "null";
+    case MetricEntry::Kind::kReal:
+      break;
+  }
+  return num(e.real);
+}
+
+/// Rows of (key, value text) shared by the YAML and the table.
 std::vector<std::pair<std::string, std::string>> rows(const RunMetrics& m, bool run_figures) {
   std::vector<std::pair<std::string, std::string>> r;
+  for (const MetricEntry& e : metrics_entries(m, run_figures)) r.emplace_back(e.key, text_of(e));
+  return r;
+}
+
+MetricEntry count(const char* key, std::size_t v) {
+  return {MetricEntry::Kind::kCount, key, v, 0.0};
+}
+MetricEntry real(const char* key, double v) {
+  return {MetricEntry::Kind::kReal, key, 0, v};
+}
+MetricEntry maybe(const char* key, const std::optional<double>& v) {
+  return v ? real(key, *v) : MetricEntry{MetricEntry::Kind::kNull, key, 0, 0.0};
+}
+
+}  // namespace
+
+std::vector<MetricEntry> metrics_entries(const RunMetrics& m, bool run_figures) {
+  std::vector<MetricEntry> r;
   if (run_figures) {
     r = {
-        {"updates", std::to_string(m.updates)},
-        {"skipped_updates", std::to_string(m.skipped_updates)},
-        {"update_ms_mean", num(m.update_ms_mean)},
-        {"update_ms_p95", num(m.update_ms_p95)},
-        {"wall_s", num(m.wall_s)},
-        {"particles_mean", num(m.particles_mean)},
-        {"particles_min", std::to_string(m.particles_min)},
-        {"particles_max", std::to_string(m.particles_max)},
-        {"beams_used_mean", num(m.beams_used_mean)},
-        {"fit_mean", num(m.fit_mean)},
-        {"converged_fraction", num(m.converged_fraction)},
+        count("updates", m.updates),
+        count("skipped_updates", m.skipped_updates),
+        real("update_ms_mean", m.update_ms_mean),
+        real("update_ms_p95", m.update_ms_p95),
+        real("wall_s", m.wall_s),
+        real("particles_mean", m.particles_mean),
+        count("particles_min", m.particles_min),
+        count("particles_max", m.particles_max),
+        real("beams_used_mean", m.beams_used_mean),
+        real("fit_mean", m.fit_mean),
+        real("converged_fraction", m.converged_fraction),
     };
   }
   if (m.accuracy) {
     const AccuracyMetrics& a = *m.accuracy;
-    r.emplace_back("ate_rmse_m", num(a.ate_rmse_m));
-    r.emplace_back("ate_max_m", num(a.ate_max_m));
-    r.emplace_back("heading_rmse_deg", num(a.heading_rmse_deg));
-    r.emplace_back("converged_after_s",
-                   a.converged_after_s ? num(*a.converged_after_s) : std::string("null"));
-    r.emplace_back("truth_matched", std::to_string(a.matched));
-    r.emplace_back("lock_on_s", a.lock_on_s ? num(*a.lock_on_s) : std::string("null"));
-    r.emplace_back("lock_on_travel_m", num(a.lock_on_travel_m));
-    r.emplace_back("post_lock_ate_rmse_m", num(a.post_lock_ate_rmse_m));
-    r.emplace_back("post_lock_ate_max_m", num(a.post_lock_ate_max_m));
-    r.emplace_back("post_lock_heading_rmse_deg", num(a.post_lock_heading_rmse_deg));
+    r.push_back(real("ate_rmse_m", a.ate_rmse_m));
+    r.push_back(real("ate_max_m", a.ate_max_m));
+    r.push_back(real("heading_rmse_deg", a.heading_rmse_deg));
+    r.push_back(maybe("converged_after_s", a.converged_after_s));
+    r.push_back(count("truth_matched", a.matched));
+    r.push_back(maybe("lock_on_s", a.lock_on_s));
+    r.push_back(real("lock_on_travel_m", a.lock_on_travel_m));
+    r.push_back(real("post_lock_ate_rmse_m", a.post_lock_ate_rmse_m));
+    r.push_back(real("post_lock_ate_max_m", a.post_lock_ate_max_m));
+    r.push_back(real("post_lock_heading_rmse_deg", a.post_lock_heading_rmse_deg));
     if (run_figures) {
-      r.emplace_back("false_converged", std::to_string(a.false_converged));
-      r.emplace_back("false_converged_run", std::to_string(a.false_converged_run));
+      r.push_back(count("false_converged", a.false_converged));
+      r.push_back(count("false_converged_run", a.false_converged_run));
     }
   }
   if (m.relations) {
-    r.emplace_back("relations_trans_m", num(m.relations->trans_m));
-    r.emplace_back("relations_rot_deg", num(m.relations->rot_deg));
-    r.emplace_back("relations_trans_std_m", num(m.relations->trans_std_m));
-    r.emplace_back("relations_rot_std_deg", num(m.relations->rot_std_deg));
-    r.emplace_back("relations_used", std::to_string(m.relations->used));
+    r.push_back(real("relations_trans_m", m.relations->trans_m));
+    r.push_back(real("relations_rot_deg", m.relations->rot_deg));
+    r.push_back(real("relations_trans_std_m", m.relations->trans_std_m));
+    r.push_back(real("relations_rot_std_deg", m.relations->rot_std_deg));
+    r.push_back(count("relations_used", m.relations->used));
   }
   return r;
 }
-
-}  // namespace
 
 AccuracyMetrics accuracy_metrics(const AteResult& ate) {
   AccuracyMetrics a;

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "pgmcl/io/carmen.hpp"
+#include "pgmcl/io/values.hpp"
 
 namespace pgmcl::io {
 
@@ -51,6 +52,23 @@ Trajectory scan_truth(const CarmenLog& log, LaserMessage which) {
     t.push_back({s.stamp, s.laser_pose.compose(s.scan.sensor_pose.inverse())});
   }
   return t;
+}
+
+bool is_carmen_path(const std::string& path) {
+  std::string p = path;
+  if (p.size() > 3 && p.compare(p.size() - 3, 3, ".gz") == 0) p.resize(p.size() - 3);
+  auto ends = [&p](const char* ext) {
+    const std::string e(ext);
+    return p.size() > e.size() && p.compare(p.size() - e.size(), e.size(), e) == 0;
+  };
+  return ends(".log") || ends(".clf");
+}
+
+Trajectory log_truth(const CarmenLog& log, const std::string& source) {
+  for (const CarmenScan& s : log.scans) {
+    if (s.has_poses) return scan_truth(log, s.message);
+  }
+  throw UsageError(source + ": no laser scans with poses to take as ground truth");
 }
 
 Trajectory truepos_trajectory(const CarmenLog& log) {

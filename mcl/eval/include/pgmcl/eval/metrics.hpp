@@ -87,6 +87,20 @@ class MetricsAccumulator {
   std::size_t skipped_ = 0;
 };
 
+/// One figure of metrics.yaml. Counts are whole numbers; `kNull` is a figure that does not
+/// exist (converged_after_s of a run that never converged), written `null`.
+struct MetricEntry {
+  enum class Kind { kCount, kReal, kNull } kind = Kind::kReal;
+  std::string key;
+  std::size_t count = 0;  ///< kCount
+  double real = 0.0;      ///< kReal
+};
+
+/// The figures of metrics.yaml in its order, keys as listed there: the one list that the
+/// YAML, the table and the Python bindings' dict are made from. `run_figures` as below.
+[[nodiscard]] std::vector<MetricEntry> metrics_entries(const RunMetrics& m,
+                                                       bool run_figures = true);
+
 /// Nearest-rank percentile (p in [0, 100]) of unsorted values; 0 for an empty input.
 [[nodiscard]] double percentile(std::vector<double> values, double p);
 

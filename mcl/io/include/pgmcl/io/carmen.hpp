@@ -188,6 +188,12 @@ struct CarmenReadOptions {
 /// truth. Scans without poses (RAWLASERn) are left out; only messages of type `which`.
 [[nodiscard]] Trajectory scan_truth(const CarmenLog& log,
                                     LaserMessage which = LaserMessage::kFlaser);
+/// True for CARMEN log names: *.log, *.clf, optionally followed by .gz.
+[[nodiscard]] bool is_carmen_path(const std::string& path);
+
+/// Ground truth of a corrected log: scan_truth of the first laser message type in the log
+/// that logs poses. Throws UsageError naming `source` when no scan has poses.
+[[nodiscard]] Trajectory log_truth(const CarmenLog& log, const std::string& source);
 /// TRUEPOS true poses.
 [[nodiscard]] Trajectory truepos_trajectory(const CarmenLog& log);
 /// ODOM poses in file order.

@@ -29,7 +29,7 @@ struct ConvertOptions {
 int run_convert(const ConvertOptions& o) {
 #ifdef PGMCL_HAVE_ROS
   const bool bag_in = is_bag_path(o.in), bag_out = is_bag_path(o.out);
-  if (!bag_in && bag_out && is_carmen_path(o.in)) {
+  if (!bag_in && bag_out && io::is_carmen_path(o.in)) {
     const io::CarmenLog log = read_log(o.in, {}, o.strict);
     rosbag_io::BagWriteOptions w;
     w.scan_topic = o.bag.scan_topic;
@@ -50,7 +50,7 @@ int run_convert(const ConvertOptions& o) {
     std::printf("\n");
     return 0;
   }
-  if (bag_in && !bag_out && is_carmen_path(o.out)) {
+  if (bag_in && !bag_out && io::is_carmen_path(o.out)) {
     const io::CarmenLog log = read_bag_input(o.in, o.bag, "convert");
     ensure_parent_directory(o.out);
     io::write_carmen(o.out, log);

@@ -1,15 +1,20 @@
 #include "app_util.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
 #include <system_error>
+#include <thread>
 
 #include "cli_errors.hpp"
 #include "pgmcl/io/errors.hpp"
 #include "pgmcl/io/tum.hpp"
 #include "pgmcl/io/values.hpp"
+#include "pgmcl/map_io/map_io.hpp"
 
 namespace pgmcl::app {
 
@@ -119,6 +124,36 @@ void DeprecatedName::note_if_used() const {
   }
 }
 
+CLI::Validator whole_number(std::uint64_t lo, std::uint64_t hi) {
+  const std::string rule =
+      "a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  return CLI::Validator(
+      [lo, hi, rule](std::string& text) -> std::string {
+        std::uint64_t v = 0;
+        const char* first = text.data();
+        const char* last = text.data() + text.size();
+        const auto [ptr, ec] = std::from_chars(first, last, v);
+        const bool digits =
+            !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+        if (!digits || ec != std::errc() || ptr != last) {
+          return "must be " + rule + ", got '" + text + "'";
+        }
+        return v >= lo && v <= hi ? std::string() : "must be " + rule + ", got " + text;
+      },
+      rule, "WHOLE_NUMBER");
+}
+
+CLI::Option* add_seed_option(CLI::App& sub, std::uint64_t& seed, const std::string& help) {
+  return sub.add_option("--seed", seed, help)->check(whole_number());
+}
+
+std::string threads_warning(int threads) {
+  const unsigned cores = std::thread::hardware_concurrency();
+  if (cores == 0 || threads <= static_cast<int>(cores)) return "";
+  return "threads = " + std::to_string(threads) + " is more than the " + std::to_string(cores) +
+         " cores of this machine; the threads take turns (slower, same result)";
+}
+
 CLI::Validator positive() {
   return number_check([](double v) { return v > 0.0; }, "> 0", "POSITIVE");
 }
@@ -127,7 +162,14 @@ CLI::Validator non_negative() {
   return number_check([](double v) { return v >= 0.0; }, ">= 0", "NONNEGATIVE");
 }
 
-io::CarmenLog read_log(const std::string& path, const io::CarmenReadOptions& opt, bool strict) {
+std::string map_image_path(const std::string& map_yaml) {
+  const std::filesystem::path image(maps::read_map_yaml(map_yaml).image);
+  return image.is_relative() ? (std::filesystem::path(map_yaml).parent_path() / image).string()
+                             : image.string();
+}
+
+io::CarmenLog read_log(const std::string& path, const io::CarmenReadOptions& opt, bool strict,
+                       std::vector<std::string>* warnings) {
   io::CarmenReadOptions o = opt;
   o.strict = strict;
   io::CarmenLog log = io::read_carmen(path, o);
@@ -140,6 +182,14 @@ io::CarmenLog read_log(const std::string& path, const io::CarmenReadOptions& opt
                  "pgmcl: warning: %s: dropped %zu malformed line(s) (use --strict to make this an "
                  "error):\n",
                  path.c_str(), r.malformed);
+    if (warnings != nullptr) {
+      std::string w = path + ": dropped " + std::to_string(r.malformed) + " malformed line(s)";
+      if (!r.malformed_lines.empty()) {
+        const io::LineIssue& i = r.malformed_lines.front();
+        w += ", the first on line " + std::to_string(i.line) + ": " + i.field + ": " + i.message;
+      }
+      warnings->push_back(std::move(w));
+    }
     const std::size_t listed = std::min(kListed, r.malformed_lines.size());
     for (std::size_t k = 0; k < listed; ++k) {
       const io::LineIssue& i = r.malformed_lines[k];
@@ -157,6 +207,16 @@ io::CarmenLog read_log(const std::string& path, const io::CarmenReadOptions& opt
                  path.c_str(), m.x, m.y, m.theta * 180.0 / 3.141592653589793);
   }
   return log;
+}
+
+void write_text_file(const std::string& path, const std::string& text) {
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (f == nullptr) throw io::IoError(path + ": cannot create file (" + std::strerror(errno) + ")");
+  const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  const bool flushed = std::fflush(f) == 0;
+  const std::string why = std::strerror(errno);
+  const bool closed = std::fclose(f) == 0;
+  if (!written || !flushed || !closed) throw io::IoError(path + ": write failed (" + why + ")");
 }
 
 std::string format_seconds(double s) {

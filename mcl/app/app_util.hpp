@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <initializer_list>
 #include <limits>
@@ -21,9 +22,13 @@ std::filesystem::path ensure_directory(const std::string& dir);
 void ensure_parent_directory(const std::string& file);
 
 /// Reads a CARMEN log (non-strict unless `strict`): malformed lines are dropped and reported
-/// as one "pgmcl: warning: ..." line on stderr naming the first of them (file:line: field).
+/// as a "pgmcl: warning: ..." on stderr listing them (file:line: field); `warnings`, if
+/// given, receives the warning's first line.
 [[nodiscard]] io::CarmenLog read_log(const std::string& path, const io::CarmenReadOptions& opt,
-                                     bool strict);
+                                     bool strict, std::vector<std::string>* warnings = nullptr);
+
+/// The image file a map YAML names, resolved against the YAML's folder (reads the YAML only).
+[[nodiscard]] std::string map_image_path(const std::string& map_yaml);
 
 /// Ground truth from a TUM file, or from a CARMEN log (the robot poses of its laser scans,
 /// io::scan_truth, of the first laser message type with poses), chosen by io::is_carmen_path.
@@ -32,6 +37,16 @@ void ensure_parent_directory(const std::string& file);
 /// CLI11 checks with short messages ("must be > 0" rather than CLI11's range dump).
 [[nodiscard]] CLI::Validator positive();
 [[nodiscard]] CLI::Validator non_negative();
+/// Digits only, within [lo, hi]: "-1" and "18446744073709551616" are refused instead of
+/// wrapping to 2^64 - 1 as strtoull would.
+[[nodiscard]] CLI::Validator whole_number(
+    std::uint64_t lo = 0, std::uint64_t hi = std::numeric_limits<std::uint64_t>::max());
+
+/// A --seed option (any unsigned 64-bit value, checked as whole_number).
+CLI::Option* add_seed_option(CLI::App& sub, std::uint64_t& seed, const std::string& help);
+
+/// "threads = N is more than ..." when N is above this machine's core count, else "".
+[[nodiscard]] std::string threads_warning(int threads);
 
 /// One number of a comma-separated option value ("--glitch RATE,DEG") and the interval it
 /// must lie in.
@@ -70,6 +85,10 @@ class DeprecatedName {
   std::string old_name_;
   std::string new_name_;
 };
+
+/// Writes `text` to `path`; throws IoError naming it when the file cannot be written whole
+/// (a full disk included).
+void write_text_file(const std::string& path, const std::string& text);
 
 /// "12.3 s" / "1.23 ms" style durations for summaries.
 [[nodiscard]] std::string format_seconds(double s);

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <stdexcept>
+#include <string>
 
 #ifdef PGMCL_HAVE_ROS
 #include "pgmcl/rosbag_io/rosbag_io.hpp"
@@ -30,7 +31,8 @@ bool is_bag_path(const std::string& path) {
   return path.size() > 4 && path.compare(path.size() - 4, 4, ".bag") == 0;
 }
 
-io::CarmenLog read_bag_input(const std::string& path, const BagInput& in, const std::string& what) {
+io::CarmenLog read_bag_input(const std::string& path, const BagInput& in, const std::string& what,
+                             std::vector<std::string>* warnings) {
 #ifdef PGMCL_HAVE_ROS
   (void)what;  // only the build without ROS names the command
   rosbag_io::BagReadOptions opt;
@@ -40,15 +42,19 @@ io::CarmenLog read_bag_input(const std::string& path, const BagInput& in, const 
   opt.base_frame = in.base_frame;
   rosbag_io::BagReadReport report;
   io::CarmenLog log = rosbag_io::read_bag(path, opt, &report);
-  if (report.outside_odometry > 0)
-    std::fprintf(stderr, "pgmcl: warning: %s: %zu scan(s) outside the odometry's time span\n",
-                 path.c_str(), report.outside_odometry);
+  if (report.outside_odometry > 0) {
+    const std::string w = path + ": " + std::to_string(report.outside_odometry) +
+                          " scan(s) outside the odometry's time span";
+    std::fprintf(stderr, "pgmcl: warning: %s\n", w.c_str());
+    if (warnings != nullptr) warnings->push_back(w);
+  }
   for (const std::string& n : report.notes)
     std::fprintf(stderr, "pgmcl: %s: %s\n", path.c_str(), n.c_str());
   return log;
 #else
   (void)path;
   (void)in;
+  (void)warnings;
   throw_without_ros(what);
 #endif
 }

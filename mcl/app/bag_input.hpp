@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
 
 #include "pgmcl/io/carmen.hpp"
 
@@ -27,9 +28,11 @@ void add_bag_input_options(CLI::App& sub, BagInput& in, CLI::Option* needs);
 [[nodiscard]] bool is_bag_path(const std::string& path);
 
 /// The bag at `path` as a log; scans outside the odometry's time span are reported as one
-/// warning on stderr. Throws what rosbag_io::read_bag throws, or std::runtime_error when
-/// pgmcl was built without ROS 1 (`what` names the command).
+/// warning on stderr (also appended to `warnings` when given). Throws what
+/// rosbag_io::read_bag throws, or std::runtime_error when pgmcl was built without ROS 1
+/// (`what` names the command).
 [[nodiscard]] io::CarmenLog read_bag_input(const std::string& path, const BagInput& in,
-                                           const std::string& what);
+                                           const std::string& what,
+                                           std::vector<std::string>* warnings = nullptr);
 
 }  // namespace pgmcl::app

@@ -11,6 +11,9 @@ namespace pgmcl::app {
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;  ///< bad input file, I/O, runtime failure
 inline constexpr int kExitUsage = 2;    ///< bad command line (io::UsageError)
+/// Stopped by a signal: 128 + its number (interrupt.hpp), as a shell reports it.
+inline constexpr int kExitSigint = 130;
+inline constexpr int kExitSigterm = 143;
 
 /// Runs `body`, mapping exceptions to "pgmcl: error: <what>" on `err` and an exit code
 /// (no stack traces, no abort). Returns body's result when it does not throw.

@@ -202,7 +202,7 @@ Command add_calibrate_command(CLI::App& app) {
   o->range_cmd->add_option("--readings", r.sim.readings, "Per experiment (simulation)")
       ->capture_default_str()
       ->check(CLI::Range(2, 10000000));
-  o->range_cmd->add_option("--seed", r.sim.seed, "Random seed (simulation)");
+  add_seed_option(*o->range_cmd, r.sim.seed, "Random seed (simulation)");
 
   EdgeOptions& e = o->edge;
   o->edge_cmd = sub->add_subcommand("edge", "Across-beam sigma from edge-boundary jitter");
@@ -224,7 +224,7 @@ Command add_calibrate_command(CLI::App& app) {
   o->edge_cmd->add_option("--runs", e.sim.runs, "Runs (simulation)")->capture_default_str();
   o->edge_cmd->add_option("--scans", e.sim.scans, "Scans per run (simulation)")
       ->capture_default_str();
-  o->edge_cmd->add_option("--seed", e.sim.seed, "Random seed (simulation)");
+  add_seed_option(*o->edge_cmd, e.sim.seed, "Random seed (simulation)");
 
   return {sub, [o]() -> int {
             if (o->range_cmd->parsed()) {

@@ -1,5 +1,6 @@
 /// pgmcl convert: a CARMEN log as a ROS 1 bag (/scan, /tf, /tf_static, /odom), or a bag as
-/// a CARMEN log. The direction follows the file names: one side must end in ".bag".
+/// a CARMEN log. The direction follows the file names: one side must end in ".bag". The
+/// output is written beside its target and renamed into place at the end (OutputFiles).
 
 #include <cstdio>
 #include <memory>
@@ -8,6 +9,7 @@
 #include "app_util.hpp"
 #include "bag_input.hpp"
 #include "commands.hpp"
+#include "output_files.hpp"
 #include "pgmcl/io/carmen_writer.hpp"
 #include "pgmcl/io/values.hpp"
 #ifdef PGMCL_HAVE_ROS
@@ -29,7 +31,16 @@ struct ConvertOptions {
 int run_convert(const ConvertOptions& o) {
 #ifdef PGMCL_HAVE_ROS
   const bool bag_in = is_bag_path(o.in), bag_out = is_bag_path(o.out);
-  if (!bag_in && bag_out && io::is_carmen_path(o.in)) {
+  const bool to_bag = !bag_in && bag_out && io::is_carmen_path(o.in);
+  const bool to_log = bag_in && !bag_out && io::is_carmen_path(o.out);
+  if (!to_bag && !to_log)
+    throw io::UsageError(
+        "convert: one of --log and --out must be a ROS bag (.bag), the other a "
+        "CARMEN log (.log or .clf, optionally .gz)");
+  OutputFiles files;
+  files.input(o.in, "--log");
+  const std::string out_tmp = files.add(o.out, "--out");
+  if (to_bag) {
     const io::CarmenLog log = read_log(o.in, {}, o.strict);
     rosbag_io::BagWriteOptions w;
     w.scan_topic = o.bag.scan_topic;
@@ -38,8 +49,8 @@ int run_convert(const ConvertOptions& o) {
     w.base_frame = o.bag.base_frame;
     w.laser_frame = o.laser_frame;
     w.time_offset = o.time_offset;
-    ensure_parent_directory(o.out);
-    const rosbag_io::BagWriteReport r = rosbag_io::write_bag(log, o.out, w);
+    const rosbag_io::BagWriteReport r = rosbag_io::write_bag(log, out_tmp, w);
+    files.commit();
     std::printf("convert: wrote %zu scans to %s (%s, /tf %s -> %s, /tf_static %s -> %s, %s)",
                 r.scans, o.out.c_str(), w.scan_topic.c_str(), w.odom_frame.c_str(),
                 w.base_frame.c_str(), w.base_frame.c_str(), w.laser_frame.c_str(),
@@ -50,17 +61,12 @@ int run_convert(const ConvertOptions& o) {
     std::printf("\n");
     return 0;
   }
-  if (bag_in && !bag_out && io::is_carmen_path(o.out)) {
-    const io::CarmenLog log = read_bag_input(o.in, o.bag, "convert");
-    ensure_parent_directory(o.out);
-    io::write_carmen(o.out, log);
-    std::printf("convert: wrote %zu scans and %zu odometry poses to %s\n", log.scans.size(),
-                log.odometry.size(), o.out.c_str());
-    return 0;
-  }
-  throw io::UsageError(
-      "convert: one of --log and --out must be a ROS bag (.bag), the other a "
-      "CARMEN log (.log or .clf, optionally .gz)");
+  const io::CarmenLog log = read_bag_input(o.in, o.bag, "convert");
+  io::write_carmen(out_tmp, log);
+  files.commit();
+  std::printf("convert: wrote %zu scans and %zu odometry poses to %s\n", log.scans.size(),
+              log.odometry.size(), o.out.c_str());
+  return 0;
 #else
   (void)o;
   throw_without_ros("convert");

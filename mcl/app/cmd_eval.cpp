@@ -8,6 +8,7 @@
 
 #include "app_util.hpp"
 #include "commands.hpp"
+#include "output_files.hpp"
 #include "pgmcl/eval/evaluation.hpp"
 #include "pgmcl/eval/metrics.hpp"
 #include "pgmcl/eval/relations_error.hpp"
@@ -27,6 +28,11 @@ struct EvalOptions {
 };
 
 int run_eval(const EvalOptions& o) {
+  OutputFiles files;
+  files.input(o.estimate, "--estimate");
+  files.input(o.truth, "--truth");
+  files.input(o.relations, "--relations");
+  const std::string out_tmp = o.out.empty() ? std::string() : files.add(o.out, "--out");
   const io::Trajectory est = io::read_tum(o.estimate);
   const io::Trajectory truth = load_truth(o.truth);
   io::RunMetrics m;
@@ -48,13 +54,13 @@ int run_eval(const EvalOptions& o) {
     }
   }
   std::printf("%s", io::metrics_table(m, false).c_str());
-  if (!o.out.empty()) {
-    ensure_parent_directory(o.out);
-    io::write_metrics_yaml(o.out, m, false);
-  }
   if (ate.matched == 0) {
     throw std::runtime_error(o.estimate + ": no estimate pose matched the ground truth " + o.truth +
                              " in time");
+  }
+  if (!o.out.empty()) {
+    write_text_file(out_tmp, io::metrics_yaml(m, false));
+    files.commit();
   }
   return 0;
 }

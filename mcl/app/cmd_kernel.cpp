@@ -54,6 +54,13 @@ int run_kernel(const KernelOptions& o) {
       "sum %.4f (normalised over the %dx%d table; mass captured before normalising "
       "%.4f)\n",
       sum, t.side(), t.side(), t.captured_mass);
+  if (t.captured_mass < 0.5) {
+    std::fprintf(stderr,
+                 "pgmcl: warning: the %dx%d table holds only %.1f %% of the kernel's mass, so "
+                 "the normalised values above describe its centre, not the kernel: raise "
+                 "--radius or --cell\n",
+                 t.side(), t.side(), 100.0 * t.captured_mass);
+  }
   return 0;
 }
 
@@ -63,13 +70,16 @@ Command add_kernel_command(CLI::App& app) {
   auto o = std::make_shared<KernelOptions>();
   CLI::App* sub = app.add_subcommand(
       "kernel", "Print the tabular beam model (Dekan et al., Table 5) for given sigmas");
+  // 10 m, the filter's bound on a sigma (config_schema::kSigma); cells from 1 µm to 1 km.
   sub->add_option("--sigma-x", o->sigma_x_mm, "Sigma along the beam, mm")
       ->capture_default_str()
-      ->check(positive());
+      ->check(positive() & CLI::Range(0.0, 1e4));
   sub->add_option("--sigma-y", o->sigma_y_mm, "Sigma across the beam, mm")
       ->capture_default_str()
-      ->check(positive());
-  sub->add_option("--cell", o->cell_mm, "Cell size, mm")->capture_default_str()->check(positive());
+      ->check(positive() & CLI::Range(0.0, 1e4));
+  sub->add_option("--cell", o->cell_mm, "Cell size, mm")
+      ->capture_default_str()
+      ->check(positive() & CLI::Range(1e-3, 1e6));
   sub->add_option("--angle", o->angle_deg, "Beam angle in the map frame, degrees")
       ->capture_default_str();
   sub->add_option("--radius", o->radius, "Table radius in cells ((2r+1)^2 cells)")

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -20,6 +21,7 @@
 #include "pgmcl/io/relations.hpp"
 #include "pgmcl/io/values.hpp"
 #include "pgmcl/map_io/map_io.hpp"
+#include "pgmcl/mcl/config_schema.hpp"
 
 namespace pgmcl::app {
 namespace {
@@ -32,6 +34,7 @@ struct LocalizeOptions {
   std::string config;
   std::vector<std::string> sets;
   std::string init;
+  CLI::Option* init_opt = nullptr;
   bool global = false;
   std::string truth;
   std::string relations;
@@ -51,15 +54,30 @@ int run_localize(const LocalizeOptions& o) {
   io::apply_localizer_overrides(o.sets, job.config);
   if (o.threads_opt->count() > 0) job.config.threads = o.threads;
   if (o.seed_opt->count() > 0) job.config.seed = o.seed;
-
-  maps::MapLoadReport report;
-  const maps::OccupancyGrid map = maps::load_map(o.map, &report);
-  for (const auto& w : report.warnings) std::fprintf(stderr, "pgmcl: warning: %s\n", w.c_str());
+  // --init "" is a mistake, not a request for global localisation.
+  if (o.init_opt->count() > 0) job.init = parse_init(o.init);
   if (o.log.empty() == o.bag.empty())
     throw io::UsageError("localize: give the scans with --log (CARMEN) or --bag (ROS 1)");
   const std::string& source = o.bag.empty() ? o.log : o.bag;
-  const io::CarmenLog log = o.bag.empty() ? read_log(o.log, {}, o.strict)
-                                          : read_bag_input(o.bag, o.bag_input, "localize --bag");
+
+  // Every output and input is known before any work: an unwritable --out or an output that
+  // would overwrite an input fails now, not after the run.
+  OutputFiles files;
+  files.input(o.map, "--map");
+  files.input(map_image_path(o.map), "--map's image");
+  files.input(o.log, "--log");
+  files.input(o.bag, "--bag");
+  files.input(o.config, "--config");
+  files.input(o.truth, "--truth");
+  files.input(o.relations, "--relations");
+  const LocalizeOutputs outputs = register_localize_outputs(files, o.out, "--out");
+
+  maps::MapLoadReport report;
+  const maps::OccupancyGrid map = maps::load_map(o.map, &report);
+  for (const auto& w : report.warnings) warn(job, w);
+  const io::CarmenLog log =
+      o.bag.empty() ? read_log(o.log, {}, o.strict, &job.warnings)
+                    : read_bag_input(o.bag, o.bag_input, "localize --bag", &job.warnings);
 
   job.map = &map;
   job.log = &log;
@@ -69,17 +87,15 @@ int run_localize(const LocalizeOptions& o) {
     job.relations = io::read_relations(o.relations);
     job.relations_time_offset = o.time_offset;
   }
-  if (!o.init.empty()) {
-    job.init = parse_init(o.init);
-  } else if (!o.global && job.truth) {
+  if (o.init_opt->count() == 0 && !o.global && job.truth) {
     job.init.kind = InitialBelief::Kind::kTruth;
   }
-  job.out_dir = o.out;
+  check_job(job, o.map, "--init");
   job.title = std::filesystem::path(source).filename().string();
   job.quiet = o.quiet;
-  const io::RunMetrics m = run_localization(job);
+  const io::RunMetrics m = run_localization(job, outputs, files);
   std::printf("%s\n", summary_line(m, o.out).c_str());
-  return 0;
+  return finish_exit_code(m, o.out);
 }
 
 }  // namespace
@@ -99,10 +115,10 @@ Command add_localize_command(CLI::App& app) {
   sub->add_option("--config", o->config, "Filter configuration YAML")->check(CLI::ExistingFile);
   sub->add_option("--set", o->sets, "Override a config key, e.g. filter.particles=2000")
       ->take_all();
-  auto* init =
+  o->init_opt =
       sub->add_option("--init", o->init, "Initial pose X,Y,THETA[,SX,SY,STH] (metres, radians)");
   auto* global = sub->add_flag("--global", o->global, "Start with global localisation");
-  init->excludes(global);
+  o->init_opt->excludes(global);
   sub->add_option("--truth", o->truth, "Ground truth: TUM file or a corrected CARMEN log")
       ->check(CLI::ExistingFile);
   auto* rel = sub->add_option("--relations", o->relations, "Benchmark relations file")
@@ -111,8 +127,8 @@ Command add_localize_command(CLI::App& app) {
                   "Seconds added to log stamps to match the relations")
       ->needs(rel);
   o->threads_opt = sub->add_option("--threads", o->threads, "OpenMP threads (0 = OpenMP default)")
-                       ->check(non_negative());
-  o->seed_opt = sub->add_option("--seed", o->seed, "Random seed");
+                       ->check(whole_number(0, config_schema::kMaxThreads));
+  o->seed_opt = add_seed_option(*sub, o->seed, "Random seed");
   sub->add_option("--out", o->out, "Output directory")->capture_default_str();
   sub->add_flag("--strict", o->strict, "Malformed log lines are errors, not warnings");
   sub->add_flag("--quiet", o->quiet, "No progress output");

@@ -3,14 +3,19 @@
 /// `laser_pose_*`), which equals the robot pose for logs without a laser offset PARAM.
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "app_util.hpp"
 #include "cli_errors.hpp"
 #include "commands.hpp"
+#include "interrupt.hpp"
+#include "output_files.hpp"
 #include "pgmcl/io/carmen.hpp"
 #include "pgmcl/io/values.hpp"
 #include "pgmcl/map_io/map_io.hpp"
@@ -29,8 +34,40 @@ struct MapOptions {
   bool strict = false;
 };
 
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
 int run_map(const MapOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
+  char buf[320];
+  if (o.mapping.resolution > maps::kMaxResolution) {
+    std::snprintf(buf, sizeof buf, "--resolution: must be at most %g m per cell, got %g",
+                  maps::kMaxResolution, o.mapping.resolution);
+    throw io::UsageError(buf);
+  }
+  // Every output is known before the log is read: the YAML and its image, which must not be
+  // one file (`--out map.pgm` would otherwise write the YAML over its own image).
+  namespace fs = std::filesystem;
+  const std::string image_name =
+      o.image.empty() ? fs::path(o.out).stem().string() + ".pgm" : o.image;
+  if (!ends_with(image_name, ".pgm") && !ends_with(image_name, ".pgm.gz") &&
+      !ends_with(image_name, ".png")) {
+    throw io::UsageError("--image: " + image_name + ": use a .pgm, .pgm.gz or .png name");
+  }
+  const std::string image_path = fs::path(image_name).is_absolute()
+                                     ? image_name
+                                     : (fs::path(o.out).parent_path() / image_name).string();
+  if (same_file(o.out, image_path)) {
+    throw io::UsageError("--out: the map YAML " + o.out + " and its image " + image_path +
+                         " would be one file; give the YAML a .yaml name");
+  }
+  OutputFiles files;
+  files.input(o.log, "--log");
+  const std::string yaml_tmp = files.add(o.out, "--out");
+  const std::string image_tmp = files.add(image_path, o.image.empty() ? "--out" : "--image");
+
   io::CarmenReadOptions ro;
   ro.front_range_max = o.max_range;
   ro.rear_range_max = o.max_range;
@@ -55,18 +92,38 @@ int run_map(const MapOptions& o) {
                          "to build a map from");
   }
   const maps::MapBounds bounds = maps::compute_map_bounds(views, o.mapping);
+  const double w = std::round((bounds.max_x - bounds.min_x) / o.mapping.resolution);
+  const double h = std::round((bounds.max_y - bounds.min_y) / o.mapping.resolution);
+  if (!(w * h <= static_cast<double>(maps::kMaxCells))) {
+    // The mapper holds a float of log-odds per cell, the grid one byte more.
+    std::snprintf(buf, sizeof buf,
+                  "--resolution %g m: the map of %s would be %.0f x %.0f cells (%.3g GB while "
+                  "mapping), more than the %llu cells a map may hold; use a coarser resolution",
+                  o.mapping.resolution, o.log.c_str(), w, h, w * h * 5.0 / 1e9,
+                  static_cast<unsigned long long>(maps::kMaxCells));
+    throw io::UsageError(buf);
+  }
   maps::OccupancyMapper mapper(bounds, o.mapping);
-  for (const auto& v : views) mapper.integrate(v);
+  for (const auto& v : views) {
+    check_interrupt();
+    mapper.integrate(v);
+  }
   const maps::OccupancyGrid grid = mapper.to_grid();
-
-  ensure_parent_directory(o.out);
-  maps::save_map(grid, o.out, o.image);
 
   std::size_t occ = 0, fre = 0;
   for (const auto c : grid.cells()) {
     occ += c == maps::kOccupied;
     fre += c == maps::kFree;
   }
+  if (occ == 0) {
+    throw std::runtime_error(o.log +
+                             ": the map has no occupied cell (every beam read 'no "
+                             "return' or was filtered out); localize would refuse it, "
+                             "so nothing was written");
+  }
+  maps::save_map_image(grid, image_tmp, maps::MapMode::kTrinary);
+  write_text_file(yaml_tmp, maps::map_yaml_text(grid, image_name, maps::MapMode::kTrinary, o.out));
+  files.commit();
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!o.quiet) {
     std::printf(

@@ -31,6 +31,8 @@
 #include "app_util.hpp"
 #include "cli_errors.hpp"
 #include "commands.hpp"
+#include "interrupt.hpp"
+#include "output_files.hpp"
 #include "perturb_random.hpp"
 #include "perturb_settings.hpp"
 #include "pgmcl/io/carmen.hpp"
@@ -118,6 +120,10 @@ int run_perturb(const PerturbOptions& o) {
     throw io::UsageError("--truth-out is required (the ground-truth TUM file to write)");
   }
   for (const DeprecatedName* d : {&o.truth_name, &o.scale_name, &o.yaw_name}) d->note_if_used();
+  OutputFiles files;
+  files.input(o.log, "--log");
+  const std::string out_tmp = files.add(o.out, "--out");
+  const std::string truth_tmp = files.add(o.truth, o.truth_name.used());
 
   io::CarmenLog log = read_log(o.log, {}, o.strict);
   std::size_t other_messages = 0;
@@ -144,13 +150,16 @@ int run_perturb(const PerturbOptions& o) {
     }
     scans = std::move(kept_scans);
     truth = std::move(kept_truth);
+    if (scans.size() < 2) {
+      throw io::UsageError("--min-scan-gap / --min-scan-travel: kept " +
+                           std::to_string(scans.size()) + " of " + std::to_string(all_scans) +
+                           " scans; a log needs at least 2 to localise in (thinning too strong)");
+    }
   }
   const PerturbedOdometry chain = perturb_odometry(truth, set.odometry, o.seed);
   const io::Trajectory& odom = chain.odometry;
 
-  ensure_parent_directory(o.out);
-  ensure_parent_directory(o.truth);
-  io::CarmenWriter w(o.out);
+  io::CarmenWriter w(out_tmp);
   char header[512];
   std::snprintf(header, sizeof header,
                 "pgmcl perturb: odometry = ground-truth increments + Table 5.6 noise "
@@ -170,6 +179,7 @@ int run_perturb(const PerturbOptions& o) {
   Rng dropout_rng = perturb_rng(o.seed, PerturbStream::kBeamDropout);
   std::size_t blanked = 0;
   for (std::size_t i = 0; i < scans.size(); ++i) {
+    check_interrupt();
     io::CarmenScan s = *scans[i];
     const Pose2& p = odom[i].pose;
     io::OdomRecord r;
@@ -196,7 +206,8 @@ int run_perturb(const PerturbOptions& o) {
     w.scan(s);
   }
   w.close();
-  io::write_tum(o.truth, truth);
+  io::write_tum(truth_tmp, truth);
+  files.commit();
 
   if (!o.quiet) {
     const Pose2 drift = truth.back().pose.between(odom.back().pose);
@@ -228,8 +239,7 @@ Command add_perturb_command(CLI::App& app) {
                   "A1,A2,A3,A4: Probabilistic Robotics Table 5.6 alphas, variance form "
                   "(rad^2/rad^2, rad^2/m^2, m^2/m^2, m^2/rad^2)")
       ->required();
-  sub->add_option("--seed", o->seed, "Random seed (every random choice derives from it)")
-      ->required();
+  add_seed_option(*sub, o->seed, "Random seed (every random choice derives from it)")->required();
   sub->add_option("--out", o->out, "Output raw CARMEN log (.gz ok)")->required();
   CLI::Option* truth =
       sub->add_option("--truth-out", o->truth, "Output ground truth (TUM), required")

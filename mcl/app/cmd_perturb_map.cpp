@@ -11,11 +11,13 @@
 /// anything else in `mode: scale` (.png, unknown cells transparent) so the intermediate
 /// probabilities survive; cells above occupied_thresh (0.65) still load as obstacles (100).
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -23,6 +25,7 @@
 #include "cli_errors.hpp"
 #include "commands.hpp"
 #include "map_perturbation.hpp"
+#include "output_files.hpp"
 #include "perturb_random.hpp"
 #include "pgmcl/io/values.hpp"
 #include "pgmcl/map_io/map_io.hpp"
@@ -53,7 +56,9 @@ struct PerturbMapSettings {
 PerturbMapSettings parse_settings(const PerturbMapOptions& o) {
   PerturbMapSettings s;
   if (!o.blur.empty()) {
-    s.blur_sigma = parse_checked_list(o.blur, "--blur", {{.name = "SIGMA_CELLS", .lo = 0.0}}, 1)[0];
+    // The kernel spans 6 sigma; past 100 cells it is a typo and costs minutes and gigabytes.
+    s.blur_sigma = parse_checked_list(o.blur, "--blur",
+                                      {{.name = "SIGMA_CELLS", .lo = 0.0, .hi = 100.0}}, 1)[0];
   }
   if (!o.thicken.empty()) {
     // More than 1000 cells (50 m at 5 cm) is a typo, not a condition.
@@ -81,25 +86,27 @@ bool only_trinary(const maps::OccupancyGrid& g) {
   return true;
 }
 
-/// Refuses an output that would overwrite the input map's YAML or image.
-void check_no_collision(const std::string& in_yaml, const std::string& in_image,
-                        const std::string& out_yaml, const std::string& out_image) {
-  const auto same = [](const std::string& a, const std::string& b) {
-    return fs::weakly_canonical(fs::absolute(a)) == fs::weakly_canonical(fs::absolute(b));
-  };
-  for (const std::string* out : {&out_yaml, &out_image}) {
-    for (const std::string* in : {&in_yaml, &in_image}) {
-      if (same(*out, *in)) {
-        throw io::UsageError("--out: writing " + out_yaml + " would overwrite the input map's " +
-                             (in == &in_yaml ? "YAML " : "image ") + *in +
-                             " (the input is never overwritten)");
-      }
-    }
-  }
-}
-
 int run_perturb_map(const PerturbMapOptions& o) {
   const PerturbMapSettings s = parse_settings(o);
+  // The image's name depends on the result (.pgm or .png), so both are registered and the
+  // one not written is dropped: no stale image of the other kind stays beside the YAML.
+  OutputFiles files;
+  files.input(o.map, "--map");
+  files.input(map_image_path(o.map), "--map's image");
+  const fs::path out_yaml(o.out);
+  const std::string yaml_tmp = files.add(o.out, "--out");
+  const std::string pgm_path =
+      (out_yaml.parent_path() / (out_yaml.stem().string() + ".pgm")).string();
+  const std::string png_path =
+      (out_yaml.parent_path() / (out_yaml.stem().string() + ".png")).string();
+  for (const std::string* image : {&pgm_path, &png_path}) {
+    if (same_file(o.out, *image)) {
+      throw io::UsageError("--out: the map YAML " + o.out + " and its image " + *image +
+                           " would be one file; give the YAML a .yaml name");
+    }
+  }
+  const std::string pgm_tmp = files.add(pgm_path, "--out (its image)");
+  const std::string png_tmp = files.add(png_path, "--out (its image)");
   maps::MapLoadReport report;
   maps::OccupancyGrid grid = maps::load_map(o.map, &report);
   for (const auto& w : report.warnings) std::fprintf(stderr, "pgmcl: warning: %s\n", w.c_str());
@@ -107,7 +114,10 @@ int run_perturb_map(const PerturbMapOptions& o) {
   std::string summary;
   char buf[256];
   if (s.erase) {
-    const int block = static_cast<int>(std::lround(s.erase_block / grid.resolution()));
+    // A block wider than the map is the whole map (and keeps lround within range).
+    const double cells = std::min(s.erase_block / grid.resolution(),
+                                  static_cast<double>(std::max(grid.width(), grid.height())));
+    const int block = static_cast<int>(std::lround(cells));
     if (block < 1) {
       std::snprintf(buf, sizeof buf, "%g m is less than half a cell (%g m)", s.erase_block,
                     grid.resolution());
@@ -130,14 +140,19 @@ int run_perturb_map(const PerturbMapOptions& o) {
     summary += buf;
   }
 
+  if (std::none_of(grid.cells().begin(), grid.cells().end(),
+                   [&grid](std::int8_t v) { return v >= grid.occupied_threshold(); })) {
+    throw std::runtime_error("perturb-map: " + summary +
+                             "the result has no occupied cell left, which localize refuses; "
+                             "nothing written (erase less)");
+  }
   const maps::MapMode mode = only_trinary(grid) ? maps::MapMode::kTrinary : maps::MapMode::kScale;
-  const fs::path out_yaml(o.out);
-  const std::string image_name =
-      out_yaml.stem().string() + (mode == maps::MapMode::kScale ? ".png" : ".pgm");
-  check_no_collision(o.map, report.image_path, o.out,
-                     (out_yaml.parent_path() / image_name).string());
-  ensure_parent_directory(o.out);
-  maps::save_map(grid, o.out, image_name, mode);
+  const bool scale = mode == maps::MapMode::kScale;
+  const std::string image_name = out_yaml.stem().string() + (scale ? ".png" : ".pgm");
+  maps::save_map_image(grid, scale ? png_tmp : pgm_tmp, mode);
+  files.drop(scale ? pgm_path : png_path);
+  write_text_file(yaml_tmp, maps::map_yaml_text(grid, image_name, mode, o.out));
+  files.commit();
 
   if (!o.quiet) {
     // What a map_server user gets: the written map as the loader reads it.
@@ -177,7 +192,7 @@ Command add_perturb_map_command(CLI::App& app) {
                   "Tile the map into BLOCK_M x BLOCK_M blocks and free the occupied cells of a "
                   "random FRACTION of the blocks holding walls (before --thicken)")
       ->type_name("FRACTION,BLOCK_M");
-  sub->add_option("--seed", o->seed, "Random seed (--erase)")->capture_default_str();
+  add_seed_option(*sub, o->seed, "Random seed (--erase)")->capture_default_str();
   sub->add_flag("--quiet", o->quiet, "No summary line");
   return {sub, [o] { return run_perturb_map(*o); }};
 }

@@ -11,6 +11,7 @@
 #include "app_util.hpp"
 #include "cli_errors.hpp"
 #include "commands.hpp"
+#include "interrupt.hpp"
 #include "localize_pipeline.hpp"
 #include "pgmcl/config/experiment_yaml.hpp"
 #include "pgmcl/config/scenario_yaml.hpp"
@@ -64,22 +65,41 @@ int run_run(const RunOptions& o) {
   std::vector<std::string> sets = o.sets;
   if (!o.out.empty()) sets.push_back("out=" + o.out);
   const io::Experiment e = io::read_experiment(o.experiment, sets);
-  const std::filesystem::path out = ensure_directory(e.out);
+
+  OutputFiles files;
+  files.input(o.experiment, "experiment");
+  files.input(e.scenario, "data.scenario");
+  files.input(e.log, "data.log");
+  files.input(e.truth, "data.truth");
+  files.input(e.relations, "data.relations");
+  if (!e.map.empty()) {
+    files.input(e.map, "map");
+    files.input(map_image_path(e.map), "map's image");
+  }
+  const LocalizeOutputs outputs = register_localize_outputs(files, e.out, "out");
+  std::string sim_log, sim_truth;
+  if (!e.scenario.empty()) {
+    sim_log = files.add((std::filesystem::path(e.out) / "sim.log.gz").string(), "out");
+    sim_truth = files.add((std::filesystem::path(e.out) / "truth.tum").string(), "out");
+  }
 
   LocalizeJob job;
   job.config = e.filter;
-  job.out_dir = e.out;
   job.title = e.name;
   job.quiet = o.quiet;
+  job.init = to_belief(e, !e.scenario.empty() || !e.truth.empty());
   maps::OccupancyGrid map, world;
   io::CarmenLog log;
   if (!e.scenario.empty()) {
     const io::ScenarioFile sf = io::read_scenario_file(e.scenario, world);
+    files.input(sf.map_path, "the scenario's map");
+    files.input(map_image_path(sf.map_path), "the scenario's map image");
     const sims::SimulationLog sim = sims::simulate(sf.scenario, world);
+    check_interrupt();
     if (sim.records.empty())
       throw std::runtime_error(e.scenario + ": simulation produced no scans");
-    io::write_sim_carmen((out / "sim.log.gz").string(), sim);
-    io::write_sim_truth_tum((out / "truth.tum").string(), sim);
+    io::write_sim_carmen(sim_log, sim);
+    io::write_sim_truth_tum(sim_truth, sim);
     log = io::to_carmen_log(sim);
     job.log_name = e.scenario + " (simulated)";
     job.truth = io::sim_truth_trajectory(sim);
@@ -88,14 +108,15 @@ int run_run(const RunOptions& o) {
                    sim.records.size(), e.scenario.c_str());
     }
   } else {
-    log = read_log(e.log, {}, false);
+    log = read_log(e.log, {}, false, &job.warnings);
     job.log_name = e.log;
   }
   if (!e.truth.empty()) job.truth = load_truth(e.truth);
+  const std::string map_name = e.map.empty() ? e.scenario : e.map;
   if (!e.map.empty()) {
     maps::MapLoadReport report;
     map = maps::load_map(e.map, &report);
-    for (const auto& w : report.warnings) std::fprintf(stderr, "pgmcl: warning: %s\n", w.c_str());
+    for (const auto& w : report.warnings) warn(job, w);
     job.map = &map;
   } else {
     job.map = &world;
@@ -105,10 +126,10 @@ int run_run(const RunOptions& o) {
     job.relations = io::read_relations(e.relations);
     job.relations_time_offset = e.time_offset;
   }
-  job.init = to_belief(e, job.truth.has_value());
-  const io::RunMetrics m = run_localization(job);
+  check_job(job, map_name, e.path + ": init");
+  const io::RunMetrics m = run_localization(job, outputs, files);
   std::printf("%s: %s\n", e.name.c_str(), summary_line(m, e.out).c_str());
-  return 0;
+  return finish_exit_code(m, e.out);
 }
 
 }  // namespace

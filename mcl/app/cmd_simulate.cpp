@@ -9,6 +9,8 @@
 
 #include "app_util.hpp"
 #include "commands.hpp"
+#include "interrupt.hpp"
+#include "output_files.hpp"
 #include "pgmcl/config/scenario_yaml.hpp"
 #include "pgmcl/io/sim_log_io.hpp"
 #include "pgmcl/sims/scenario.hpp"
@@ -24,19 +26,23 @@ struct SimulateOptions {
 };
 
 int run_simulate(const SimulateOptions& o) {
+  OutputFiles files;
+  files.input(o.scenario, "scenario");
+  const std::string out_tmp = files.add(o.out, "--out");
+  const std::string truth_tmp = o.truth.empty() ? std::string() : files.add(o.truth, "--truth");
   maps::OccupancyGrid map;
   const io::ScenarioFile sf = io::read_scenario_file(o.scenario, map);
+  files.input(sf.map_path, "the scenario's map");
+  files.input(map_image_path(sf.map_path), "the scenario's map image");
   const sims::SimulationLog log = sims::simulate(sf.scenario, map);
+  check_interrupt();
   if (log.records.empty()) {
     throw std::runtime_error(o.scenario + ": the simulation produced no scans (duration " +
                              std::to_string(sf.scenario.duration) + " s)");
   }
-  ensure_parent_directory(o.out);
-  io::write_sim_carmen(o.out, log);
-  if (!o.truth.empty()) {
-    ensure_parent_directory(o.truth);
-    io::write_sim_truth_tum(o.truth, log);
-  }
+  io::write_sim_carmen(out_tmp, log);
+  if (!o.truth.empty()) io::write_sim_truth_tum(truth_tmp, log);
+  files.commit();
   if (!o.quiet) {
     double travelled = 0.0;
     for (std::size_t i = 1; i < log.records.size(); ++i) {

@@ -9,6 +9,7 @@
 
 #include "app_util.hpp"
 #include "cli_errors.hpp"
+#include "interrupt.hpp"
 #include "pgmcl/config/config_yaml.hpp"
 #include "pgmcl/eval/evaluation.hpp"
 #include "pgmcl/io/errors.hpp"
@@ -17,6 +18,7 @@
 #include "plot.hpp"
 #include "png_overlay.hpp"
 #include "progress.hpp"
+#include "run_checks.hpp"
 
 namespace pgmcl::app {
 namespace {
@@ -54,6 +56,7 @@ void write_updates_csv(const std::string& path, const std::vector<replay::Update
     io::sort_by_stamp(sorted);
   }
   std::ofstream f(path);
+  if (!f) throw io::IoError(path + ": cannot create file");
   f << "stamp,x,y,theta,skipped,converged,fit,n_eff,particles,competitors,evidence,seeded,"
        "injected,switched,searched,error_m,error_deg\n";
   char buf[512];
@@ -73,6 +76,7 @@ void write_updates_csv(const std::string& path, const std::vector<replay::Update
                   u.searched ? 1 : 0, e, eth);
     f << buf;
   }
+  f.close();
   if (!f) throw io::IoError(path + ": write failed");
 }
 
@@ -83,7 +87,7 @@ InitialBelief parse_init(const std::string& text) {
       io::parse_number_list(text, "--init", {3, 6}, "X,Y,THETA[,SX,SY,STH] (m, m, rad)");
   InitialBelief b;
   b.kind = InitialBelief::Kind::kPose;
-  b.pose = {v[0], v[1], wrap_angle(v[2])};
+  b.pose = {v[0], v[1], v[2]};
   if (v.size() == 6) {
     if (!(v[3] > 0.0 && v[4] > 0.0 && v[5] > 0.0)) {
       throw io::UsageError("--init: SX, SY and STH must be > 0, got '" + text + "'");
@@ -95,7 +99,41 @@ InitialBelief parse_init(const std::string& text) {
   return b;
 }
 
-io::RunMetrics run_localization(const LocalizeJob& job) {
+LocalizeOutputs register_localize_outputs(OutputFiles& files, const std::string& dir,
+                                          const std::string& option) {
+  if (dir.empty()) throw io::UsageError(option + ": the output folder is empty");
+  const std::filesystem::path d(dir);
+  LocalizeOutputs o;
+  o.dir = dir;
+  o.trajectory = files.add((d / "trajectory.tum").string(), option);
+  o.metrics = files.add((d / "metrics.yaml").string(), option);
+  o.config = files.add((d / "config.yaml").string(), option);
+  o.updates = files.add((d / "updates.csv").string(), option);
+  o.overlay = files.add((d / "overlay.png").string(), option);
+  o.error_png_target = (d / "error.png").string();
+  o.error_png = files.add(o.error_png_target, option);
+  return o;
+}
+
+void warn(LocalizeJob& job, const std::string& w) {
+  std::fprintf(stderr, "pgmcl: warning: %s\n", w.c_str());
+  job.warnings.push_back(w);
+}
+
+void check_job(LocalizeJob& job, const std::string& map_name, const std::string& what) {
+  for (const std::string& w : check_map_for_localisation(*job.map, map_name, job.config)) {
+    warn(job, w);
+  }
+  if (job.init.kind == InitialBelief::Kind::kPose) {
+    if (const std::string w = heading_warning(job.init.pose.theta, what); !w.empty()) warn(job, w);
+  }
+  for (const std::string& w : check_initial_belief(job.init, *job.map, what)) warn(job, w);
+  job.init.pose.theta = wrap_angle(job.init.pose.theta);
+  if (const std::string w = threads_warning(job.config.threads); !w.empty()) warn(job, w);
+}
+
+io::RunMetrics run_localization(const LocalizeJob& job, const LocalizeOutputs& out,
+                                OutputFiles& files) {
   std::optional<Progress> progress;
   replay::ReplayHooks hooks;
   hooks.on_start = [&](const std::string& start, std::size_t updates) {
@@ -108,19 +146,18 @@ io::RunMetrics run_localization(const LocalizeJob& job) {
                   r.converged ? ", converged" : "");
     progress->update(done, extra);
   };
-  const replay::ReplayResult run = replay::run(job, hooks);
+  hooks.stop = &stop_flag();
+  replay::ReplayResult run = replay::run(job, hooks);
   if (progress) progress->finish();
   for (const std::string& w : run.warnings) std::fprintf(stderr, "pgmcl: warning: %s\n", w.c_str());
+  // The run's own warnings are in its metrics already; those found before it go first.
+  io::RunMetrics& metrics = run.metrics;
+  metrics.warnings.insert(metrics.warnings.begin(), job.warnings.begin(), job.warnings.end());
 
-  const std::filesystem::path dir = ensure_directory(job.out_dir);
-  io::write_tum((dir / "trajectory.tum").string(), run.trajectory);
-  io::write_metrics_yaml((dir / "metrics.yaml").string(), run.metrics);
-  write_updates_csv((dir / "updates.csv").string(), run.rows, job.truth ? &*job.truth : nullptr);
-  {
-    std::ofstream f(dir / "config.yaml");
-    f << io::localizer_config_yaml(job.config);
-    if (!f) throw io::IoError((dir / "config.yaml").string() + ": write failed");
-  }
+  io::write_tum(out.trajectory, run.trajectory);
+  write_text_file(out.metrics, io::metrics_yaml(metrics));
+  write_updates_csv(out.updates, run.rows, job.truth ? &*job.truth : nullptr);
+  write_text_file(out.config, io::localizer_config_yaml(job.config));
   std::vector<Pose2> est, truth_path, cloud;
   est.reserve(run.trajectory.size());
   for (const auto& t : run.trajectory) est.push_back(t.pose);
@@ -129,12 +166,25 @@ io::RunMetrics run_localization(const LocalizeJob& job) {
   }
   const std::size_t stride = run.particles.size() / kMaxDrawnParticles + 1;
   for (std::size_t i = 0; i < run.particles.size(); i += stride) cloud.push_back(run.particles[i]);
-  write_overlay_png((dir / "overlay.png").string(), *job.map,
-                    OverlayData{truth_path, est, cloud, job.title});
+  write_overlay_png(out.overlay, *job.map, OverlayData{truth_path, est, cloud, job.title});
   if (run.ate && !run.ate->errors.empty()) {
-    write_error_png((dir / "error.png").string(), *run.ate, run.trajectory.front().stamp);
+    write_error_png(out.error_png, *run.ate, run.trajectory.front().stamp);
+  } else {
+    files.drop(out.error_png_target);
   }
-  return run.metrics;
+  files.keep_when_interrupted();
+  files.commit();
+  return metrics;
+}
+
+int finish_exit_code(const io::RunMetrics& m, const std::string& out_dir) {
+  mark_interrupt_handled();
+  if (m.complete) return kExitOk;
+  std::fprintf(stderr,
+               "pgmcl: interrupted by %s after %zu update(s); wrote the run so far to %s "
+               "(metrics.yaml: complete: false)\n",
+               signal_name(interrupt_signal()), m.updates + m.skipped_updates, out_dir.c_str());
+  return interrupted_exit_code();
 }
 
 std::string summary_line(const io::RunMetrics& m, const std::string& out_dir) {

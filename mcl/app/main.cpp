@@ -1,5 +1,6 @@
 /// pgmcl: the command-line front end. Every failure ends as one "pgmcl: error: ..." line on
-/// stderr and a non-zero exit code (2 usage, 1 input/runtime, 3 not available yet).
+/// stderr and a non-zero exit code (2 usage, 1 input/runtime, 130/143 stopped by
+/// SIGINT/SIGTERM: cli_errors.hpp, interrupt.hpp).
 
 #include <CLI/CLI.hpp>
 #include <iostream>
@@ -8,9 +9,11 @@
 
 #include "cli_errors.hpp"
 #include "commands.hpp"
+#include "interrupt.hpp"
 #include "pgmcl/io/values.hpp"
 
 int main(int argc, char** argv) {
+  pgmcl::app::install_interrupt_handlers();
   CLI::App app{
       "pgmcl: Monte Carlo localisation with the planar Gaussian beam model "
       "(Dekan et al.)",
@@ -52,7 +55,16 @@ int main(int argc, char** argv) {
           return pgmcl::app::kExitUsage;
         }
         for (const auto& c : commands) {
-          if (c.sub->parsed()) return c.run();
+          if (!c.sub->parsed()) continue;
+          const int code = c.run();
+          // A command that finished although the user asked it to stop still reports it.
+          if (code == pgmcl::app::kExitOk && pgmcl::app::interrupted() &&
+              !pgmcl::app::interrupt_handled()) {
+            std::cerr << "pgmcl: interrupted by "
+                      << pgmcl::app::signal_name(pgmcl::app::interrupt_signal()) << "\n";
+            return pgmcl::app::interrupted_exit_code();
+          }
+          return code;
         }
         return pgmcl::app::kExitUsage;  // unreachable: require_subcommand(1)
       },

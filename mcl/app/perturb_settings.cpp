@@ -7,6 +7,7 @@
 #include "app_util.hpp"
 #include "cli_errors.hpp"
 #include "pgmcl/io/values.hpp"
+#include "pgmcl/mcl/config_schema.hpp"
 
 namespace pgmcl::app {
 namespace {
@@ -43,18 +44,21 @@ struct PerturbOptions {
 PerturbSettings parse_perturb_settings(const PerturbTexts& o) {
   PerturbSettings s;
   const std::vector<double> a = io::parse_number_list(o.noise, "--odom-noise", {4}, "A1,A2,A3,A4");
+  // The filter's own bound (config_schema::kMaxMotionAlpha): past it the noise dwarfs the
+  // motion and the written odometry is noise, not a perturbation.
   for (std::size_t i = 0; i < a.size(); ++i) {
-    if (a[i] < 0.0) {
-      throw io::UsageError("--odom-noise: A" + std::to_string(i + 1) + " must be >= 0 (got " +
-                           o.noise + ")");
+    if (!(a[i] >= 0.0 && a[i] <= config_schema::kMaxMotionAlpha)) {
+      throw io::UsageError("--odom-noise: A" + std::to_string(i + 1) + " must be in [0, " +
+                           std::to_string(static_cast<int>(config_schema::kMaxMotionAlpha)) +
+                           "] (variance form), got '" + o.noise + "'");
     }
   }
   OdometryPerturbation& p = s.odometry;
   p.noise = {.a1 = a[0], .a2 = a[1], .a3 = a[2], .a4 = a[3], .a5 = 0.0};
   p.scale_bias = parse_checked_list(o.scale_bias, o.scale_bias_name,
-                                    {{.name = "F", .lo = -1.0, .lo_open = true}}, 1)[0];
-  s.yaw_drift_deg_per_m =
-      parse_checked_list(o.yaw_drift, o.yaw_drift_name, {{.name = "DEG_PER_M"}}, 1)[0];
+                                    {{.name = "F", .lo = -1.0, .hi = 10.0, .lo_open = true}}, 1)[0];
+  s.yaw_drift_deg_per_m = parse_checked_list(
+      o.yaw_drift, o.yaw_drift_name, {{.name = "DEG_PER_M", .lo = -360.0, .hi = 360.0}}, 1)[0];
   p.yaw_drift = radians(s.yaw_drift_deg_per_m);
   if (o.odom_model == "textbook") {
     p.model = OdometryModel::kTextbook;
@@ -69,7 +73,7 @@ PerturbSettings parse_perturb_settings(const PerturbTexts& o) {
   }
   if (!o.translation_glitch.empty()) {
     const auto v = parse_checked_list(o.translation_glitch, "--translation-glitch",
-                                      {kRate, {.name = "M", .lo = 0.0}}, 2);
+                                      {kRate, {.name = "M", .lo = 0.0, .hi = 100.0}}, 2);
     p.translation_glitch = {.rate = v[0], .size = v[1]};
   }
   if (!o.min_scan_gap.empty()) {
@@ -86,7 +90,8 @@ PerturbSettings parse_perturb_settings(const PerturbTexts& o) {
     s.thinning_on = true;
   }
   if (!o.laser_offset.empty()) {
-    s.laser_offset = parse_checked_list(o.laser_offset, "--laser-offset", {{.name = "X"}}, 1)[0];
+    s.laser_offset = parse_checked_list(o.laser_offset, "--laser-offset",
+                                        {{.name = "X", .lo = -10.0, .hi = 10.0}}, 1)[0];
     s.laser_offset_on = true;
   }
   if (!o.beam_dropout.empty()) {

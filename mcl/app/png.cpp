@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "app_util.hpp"
 #include "pgmcl/io/errors.hpp"
 
 // stb's headers are C-style: keep their warnings out of our -Werror build.
@@ -168,9 +169,17 @@ int Canvas::text_height(std::string_view s, int scale) {
 }
 
 void write_png(const Canvas& canvas, const std::string& path) {
-  const int ok = stbi_write_png(path.c_str(), canvas.width(), canvas.height(), 3,
-                                canvas.data().data(), canvas.width() * 3);
-  if (ok == 0) throw io::IoError(path + ": cannot write PNG");
+  // Encoded in memory, then written and checked here: stbi_write_png ignores fwrite's and
+  // fclose's results, so a full disk would go unnoticed.
+  std::string bytes;
+  const auto append = [](void* ctx, void* data, int size) {
+    static_cast<std::string*>(ctx)->append(static_cast<const char*>(data),
+                                           static_cast<std::size_t>(size));
+  };
+  const int ok = stbi_write_png_to_func(append, &bytes, canvas.width(), canvas.height(), 3,
+                                        canvas.data().data(), canvas.width() * 3);
+  if (ok == 0) throw io::IoError(path + ": cannot encode PNG");
+  write_text_file(path, bytes);
 }
 
 }  // namespace pgmcl::app

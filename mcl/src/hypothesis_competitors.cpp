@@ -25,6 +25,12 @@ constexpr double kNormalFit = 0.9;
 // ... and this much (fraction of the probe beams) better than the prediction. A fall of
 // the prediction's fit by as much within one update is an abrupt loss.
 constexpr double kGlitchGain = 0.3;
+// A candidate whose readings cross clearly fewer walls needs only this much more fit.
+constexpr double kConfirmGain = 0.1;
+// A fit this far below its running mean, and this many of its running standard deviations,
+// starts a search around the prediction even when it is not lost.
+constexpr double kMinDrop = 0.1;
+constexpr double kDropSpreads = 4.0;
 // Metres a heading glitch may displace the pose at least (more on longer steps): farther
 // candidates (slips) need a second scan.
 constexpr double kGlitchReach = 1.2;
@@ -35,8 +41,14 @@ constexpr double kFadedHeading = 0.17;
 // A place elsewhere on the map (a kidnapping) must explain this many scans in a row while
 // the prediction stays lost: clutter can make a far place fit better for a few scans.
 constexpr int kKidnapScans = 10;
+// Metres of new view over which a place the sweep found must stay ahead of a prediction
+// that still fits, before the filter moves there.
+constexpr double kSettledView = 10.0;
 // The map sweep's budget while the prediction is lost.
 constexpr double kLostSweepBoost = 10.0;
+// Coarse candidates a rescue search refines. More weaken its pruning (the threshold is the
+// worst kept candidate), and a search that runs out of budget misses the best.
+constexpr std::size_t kRescueCandidates = 3;
 
 }  // namespace
 
@@ -57,27 +69,47 @@ void HypothesisTracker::track(const Pose2& prediction, const Pose2& delta, std::
     ++c.age;
   }
 
+  // A fit far below its usual spread is no noise: where the scan fits steadily, a fall a
+  // tenth of the beams is one; in clutter only a fall beyond the clutter's own scatter.
+  const double drop_limit = std::max(kMinDrop, kDropSpreads * std::sqrt(fit_var_));
+  const bool fell = have_fit_mean_ && last_fit_ - fit >= std::min(drop_limit, kGlitchGain);
+  const bool dropped = have_fit_mean_ && fit_mean_ - fit >= drop_limit;
+  // Readings that suddenly cross walls at the prediction show a glitch even where clutter
+  // hides it in the fit.
+  const std::size_t blocked = blocked_beams(ref.pose);
+  const bool crossed =
+      have_fit_mean_ && static_cast<double>(blocked) >
+                            blocked_mean_ + static_cast<double>(beams_used_ / kBlockedMargin);
   const bool lost = have_fit_mean_ && fit < cfg_.rescue_fit_ratio * fit_mean_;
   lost_updates_ = lost ? lost_updates_ + 1 : 0;
-  if (lost_updates_ == 1) abrupt_loss_ = last_fit_ - fit >= kGlitchGain;
+  if (lost_updates_ == 1) abrupt_loss_ = fell || crossed;
   last_fit_ = fit;
   if (lost) {
-    rescue(ref, out);
+    rescue(ref, lost_updates_, abrupt_loss_, out);
   } else {
-    fit_mean_ = have_fit_mean_ ? fit_mean_ + kFitMeanRate * (fit - fit_mean_) : fit;
+    // A drop short of lost, a fall at once or readings through walls still get a search
+    // but do not stop the means.
+    if (dropped || fell || crossed) rescue(ref, 1, fell || crossed, out);
+    blocked_mean_ =
+        have_fit_mean_
+            ? blocked_mean_ + kFitMeanRate * (static_cast<double>(blocked) - blocked_mean_)
+            : static_cast<double>(blocked);
+    const double d = fit - fit_mean_;
+    fit_var_ = have_fit_mean_ ? fit_var_ + kFitMeanRate * (d * d - fit_var_) : 0.0;
+    fit_mean_ = have_fit_mean_ ? fit_mean_ + kFitMeanRate * d : fit;
     fit_usual_ = have_fit_mean_ ? fit_usual_ + kFitUsualRate * (fit - fit_usual_) : fit;
     have_fit_mean_ = true;
   }
   sweep(ref, particles, lost);
   prune(ref);
-  maybe_switch(ref, fit, step, lost, particles, out);
+  maybe_switch(ref, fit, blocked, step, lost, particles, out);
   out.competitors = competitors_.size();
   // A competitor counts once it has outlasted the scan that proposed it.
   for (const Competitor& c : competitors_)
     if (c.age >= 1) out.alternative_evidence = std::max(out.alternative_evidence, c.evidence);
 }
 
-void HypothesisTracker::rescue(const Scored& ref, HypothesisStep& out) {
+void HypothesisTracker::rescue(const Scored& ref, int widen, bool abrupt, HypothesisStep& out) {
   // Around the prediction, over a wider range of headings each update it stays lost (the
   // odometry may keep turning a robot that stands still: Table 5.6's rot1 on jitter).
   PoseSearchQuery q;
@@ -86,8 +118,8 @@ void HypothesisTracker::rescue(const Scored& ref, HypothesisStep& out) {
   q.y = ref.pose.y;
   q.theta = ref.pose.theta;
   q.half_xy = cfg_.rescue_xy;
-  q.half_theta = std::min(std::numbers::pi, cfg_.rescue_theta * lost_updates_);
-  q.max_candidates = 3;
+  q.half_theta = std::min(std::numbers::pi, cfg_.rescue_theta * widen);
+  q.max_candidates = kRescueCandidates;
   q.separation_xy = 0.5 * cfg_.separation_xy;
   q.separation_theta = 0.5 * cfg_.separation_theta;
   q.max_cost = search_.pooled_cost(ref.pose.x, ref.pose.y, ref.pose.theta);
@@ -95,7 +127,7 @@ void HypothesisTracker::rescue(const Scored& ref, HypothesisStep& out) {
   q.coarse_levels = 1;
   out.searched = true;
   for (const PoseCandidate& c : search_.search(q).candidates)
-    add(refine(c), ref, Competitor::Origin::kRescue, true);
+    add(refine(c), ref, Competitor::Origin::kRescue, abrupt);
 }
 
 void HypothesisTracker::sweep(const Scored& ref, std::size_t particles, bool lost) {
@@ -119,12 +151,12 @@ void HypothesisTracker::sweep(const Scored& ref, std::size_t particles, bool los
     const PoseSearchResult res = search_.search(q);
     sweep_credit_ -= static_cast<double>(res.lookups);
     for (const PoseCandidate& c : res.candidates)
-      add(climb({c.x, c.y, c.theta}), ref, Competitor::Origin::kSweep, lost);
+      add(climb({c.x, c.y, c.theta}), ref, Competitor::Origin::kSweep, lost && abrupt_loss_);
   }
 }
 
 void HypothesisTracker::add(const Scored& c, const Scored& ref, Competitor::Origin origin,
-                            bool lost) {
+                            bool abrupt) {
   // A robot stands in free space: a pose inside furniture may fit a scan perfectly.
   if (near_prediction(c.pose, ref.pose) || !is_free(c.pose.x, c.pose.y)) return;
   const double e = evidence(ref.score.sum_q, c.score.sum_q);
@@ -140,7 +172,7 @@ void HypothesisTracker::add(const Scored& c, const Scored& ref, Competitor::Orig
     }
     return;
   }
-  competitors_.push_back({c.pose, e, e, fit_of(c), 0.0, 0, origin, lost && abrupt_loss_});
+  competitors_.push_back({c.pose, e, e, fit_of(c), 0.0, 0, origin, abrupt});
 }
 
 void HypothesisTracker::prune(const Scored& ref) {
@@ -161,36 +193,61 @@ void HypothesisTracker::prune(const Scored& ref) {
 }
 
 bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, double fit, double step,
-                                   bool lost) const {
-  // Every winner outweighs the prediction and gained on this scan. A place the global
-  // search proposed (as likely a priori as the one the filter settled on) needs only to
-  // stay ahead over rival_view metres of new view.
+                                   bool lost, const Crossings& free) const {
+  // Every winner outweighs the prediction, gained on this scan, and is not contradicted by
+  // the free space its readings crossed.
   if (c.evidence < cfg_.switch_evidence || !(c.last > 0.0)) return false;
+  if (free.candidate > free.reference + free.margin) return false;
+  // A place the global search proposed (as likely a priori as the one the filter settled
+  // on) needs only to stay ahead over rival_view metres of new view.
   if (c.origin == Competitor::Origin::kGlobal) return c.view >= cfg_.rival_view && c.age >= 1;
+  const double moved = std::hypot(c.pose.x - ref.pose.x, c.pose.y - ref.pose.y);
+  const bool nearby = moved <= std::max(kGlitchReach, std::sin(cfg_.rescue_theta) * step);
+  const double turned = std::abs(wrap_angle(c.pose.theta - ref.pose.theta));
+  // Confirmed, within a glitch's reach: its readings cross almost no wall, clearly fewer
+  // than the prediction's, and more of them fit. Where clutter keeps every fit low, that
+  // is what tells a glitch apart.
+  const bool confirmed = cfg_.free_space && nearby && free.candidate <= free.margin &&
+                         free.candidate + free.margin <= free.reference &&
+                         c.fit >= fit + kConfirmGain;
+  const bool abrupt = c.abrupt || confirmed;
   // The others must explain the scan as the map usually does here: with some slack when
   // they were found as the prediction's fit fell at once, fully when it faded (clutter,
   // or a part of the map that is wrong, where some other pose fits better by chance).
   const double usual = std::max(fit_mean_, fit_usual_);
-  if (c.fit < (c.abrupt ? kNormalFit : 1.0) * usual) return false;
-  const double moved = std::hypot(c.pose.x - ref.pose.x, c.pose.y - ref.pose.y);
-  const bool nearby = moved <= std::max(kGlitchReach, std::sin(cfg_.rescue_theta) * step);
-  const double turned = std::abs(wrap_angle(c.pose.theta - ref.pose.theta));
+  if (!confirmed && c.fit < (c.abrupt ? kNormalFit : 1.0) * usual) return false;
   if (c.age == 0)  // at once, with this very scan: a glitch-sized correction only
-    return c.origin == Competitor::Origin::kRescue && c.abrupt && lost && nearby &&
-           turned <= cfg_.rescue_theta && c.fit >= fit + kGlitchGain;
-  if (c.origin == Competitor::Origin::kSweep)  // a kidnapping: several scans, still lost
-    return c.abrupt && lost && c.age + 1 >= kKidnapScans && lost_updates_ >= kKidnapScans &&
-           c.fit >= fit + kGlitchGain;
-  if (!c.abrupt && !(nearby && turned >= kFadedHeading)) return false;
-  return c.fit >= fit + (c.abrupt ? 0.5 : 1.0) * kGlitchGain;
+    return c.origin == Competitor::Origin::kRescue && abrupt && lost && nearby &&
+           turned <= cfg_.rescue_theta && c.fit >= fit + (confirmed ? kConfirmGain : kGlitchGain);
+  if (c.origin == Competitor::Origin::kSweep) {
+    // A kidnapping: several scans, still lost.
+    if (c.abrupt && lost && c.age + 1 >= kKidnapScans && lost_updates_ >= kKidnapScans &&
+        c.fit >= fit + kGlitchGain)
+      return true;
+    // Or the filter settled on a wrong place that fits almost as well (a building's
+    // near-symmetry): the other place stayed ahead over a long stretch of new view, fits
+    // as the map usually does, and its readings cross no more walls.
+    return cfg_.free_space && free.candidate <= free.reference && c.view >= kSettledView &&
+           c.fit >= kNormalFit * usual && c.fit > fit;
+  }
+  if (!abrupt && !(nearby && turned >= kFadedHeading)) return false;
+  return c.fit >= fit + (abrupt ? 0.5 : 1.0) * kGlitchGain;
 }
 
-void HypothesisTracker::maybe_switch(const Scored& ref, double fit, double step, bool lost,
-                                     std::size_t particles, HypothesisStep& out) {
-  // competitors_ is sorted by evidence: the first that may switch is the strongest.
+void HypothesisTracker::maybe_switch(const Scored& ref, double fit, std::size_t blocked,
+                                     double step, bool lost, std::size_t particles,
+                                     HypothesisStep& out) {
+  // competitors_ is sorted by evidence: the first that may switch is the strongest. Rays are
+  // cast only for competitors with enough evidence to win.
+  Crossings free;
+  free.margin = beams_used_ / kBlockedMargin;
+  free.reference = blocked;
   const auto winner =
-      std::find_if(competitors_.begin(), competitors_.end(),
-                   [&](const Competitor& c) { return may_switch(c, ref, fit, step, lost); });
+      std::find_if(competitors_.begin(), competitors_.end(), [&](const Competitor& c) {
+        if (c.evidence < cfg_.switch_evidence || !(c.last > 0.0)) return false;
+        free.candidate = blocked_beams(c.pose);
+        return may_switch(c, ref, fit, step, lost, free);
+      });
   if (winner == competitors_.end()) return;
   out.seed = {{winner->pose},
               static_cast<std::size_t>(

@@ -14,6 +14,8 @@ constexpr std::size_t kProbeBeams = 40;
 // Later passes of the global search only top the particle set up, so that places the
 // first scans could not tell apart do not keep it from settling.
 constexpr double kTopUp = 0.1;
+// Cells a wall may be drawn thicker than it is (hand-made and blurred maps).
+constexpr double kWallCells = 2.0;
 
 }  // namespace
 
@@ -26,14 +28,14 @@ HypothesisTracker::HypothesisTracker(std::shared_ptr<const maps::LikelihoodField
       tau_beams_(likelihood.effective_beams),
       tempering_(likelihood.tempering),
       search_(*field_, free_cells, cfg.search),
+      // Rays stop where the endpoint's own uncertainty begins, plus the cells a wall may
+      // be drawn thick by.
+      free_(
+          field_->width(), field_->height(), field_->resolution(), free_cells,
+          static_cast<float>(kFitSigmas * field_->model().sigma_along_eff() / field_->resolution() +
+                             kWallCells)),
       probe_(field_),
-      width_(field_->width()),
-      height_(field_->height()),
-      resolution_(field_->resolution()) {
-  const auto cells = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
-  free_mask_.assign((cells + 63) / 64, 0);
-  for (const std::uint32_t c : free_cells) free_mask_[c >> 6] |= std::uint64_t{1} << (c & 63);
-}
+      resolution_(field_->resolution()) {}
 
 void HypothesisTracker::reset(bool global) {
   global_ = global;
@@ -42,7 +44,7 @@ void HypothesisTracker::reset(bool global) {
   global_root_cost_ = 0.0;
   competitors_.clear();
   have_fit_mean_ = abrupt_loss_ = false;
-  fit_mean_ = fit_usual_ = last_fit_ = 0.0;
+  fit_mean_ = fit_var_ = fit_usual_ = last_fit_ = blocked_mean_ = 0.0;
   lost_updates_ = 0;
   sweep_cursor_ = 0;
   sweep_credit_ = 0.0;
@@ -61,14 +63,6 @@ void HypothesisTracker::converged(const Pose2& estimate) {
   }
 }
 
-bool HypothesisTracker::is_free(double x, double y) const noexcept {
-  const double col = std::floor(x / resolution_), row = std::floor(y / resolution_);
-  if (!(col >= 0.0 && row >= 0.0 && col < width_ && row < height_)) return false;
-  const std::size_t i = static_cast<std::size_t>(row) * static_cast<std::size_t>(width_) +
-                        static_cast<std::size_t>(col);
-  return ((free_mask_[i >> 6] >> (i & 63)) & 1u) != 0;
-}
-
 HypothesisStep HypothesisTracker::update(const LaserScan& scan,
                                          std::span<const std::uint32_t> selected,
                                          const PreparedBeams& beams, const Pose2& prediction,
@@ -76,6 +70,9 @@ HypothesisStep HypothesisTracker::update(const LaserScan& scan,
   HypothesisStep out;
   if (!search_.set_scan(beams)) return out;
   beams_used_ = beams.size();
+  beams_ = &beams;
+  sensor_x_ = static_cast<float>(scan.sensor_pose.x / resolution_);
+  sensor_y_ = static_cast<float>(scan.sensor_pose.y / resolution_);
   const std::size_t m = selected.size(), k = std::min(m, kProbeBeams);
   probe_beams_.resize(k);
   for (std::size_t j = 0; j < k; ++j) probe_beams_[j] = selected[(j * m) / k];
@@ -121,12 +118,26 @@ void HypothesisTracker::global_step(std::size_t particles, HypothesisStep& out) 
   for (const PoseCandidate& c : res.candidates) {
     if (static_cast<double>(c.cost - res.candidates.front().cost) > margin) break;
     const Pose2 p = refine(c).pose;
-    if (is_free(p.x, p.y)) global_places_.push_back(p);
+    if (is_free(p.x, p.y) && !contradicted(p, beams_->size() / 2)) global_places_.push_back(p);
   }
   const double fraction = cfg_.global_seed_fraction * (global_passes_ == 0 ? 1.0 : kTopUp);
   out.seed = {global_places_,
               static_cast<std::size_t>(std::lround(fraction * static_cast<double>(particles))),
               search_.leaf_size(), 2.0 * search_.angle_step()};
+}
+
+std::size_t HypothesisTracker::blocked_beams(const Pose2& pose) const noexcept {
+  // Off, every pose crosses nothing: no veto, confirmation or search comes from it.
+  if (!cfg_.free_space || beams_ == nullptr) return 0;
+  return free_.blocked_beams(pose, *beams_, sensor_x_, sensor_y_);
+}
+
+bool HypothesisTracker::contradicted(const Pose2& pose, std::size_t ref_blocked) const noexcept {
+  // At a right pose a reading crosses a wall only where the map is wrong or the ray grazes
+  // a corner; at a wrong one that fits by chance (clutter, people, furniture missing from
+  // the map), many do.
+  const std::size_t beams = beams_ == nullptr ? 0 : beams_->size();
+  return blocked_beams(pose) > ref_blocked + beams / kBlockedMargin;
 }
 
 HypothesisTracker::Scored HypothesisTracker::climb(const Pose2& start) const {

@@ -16,6 +16,7 @@
 #include <span>
 #include <vector>
 
+#include "free_space.hpp"
 #include "pgmcl/common/laser_scan.hpp"
 #include "pgmcl/maps/likelihood_field.hpp"
 #include "pgmcl/mcl/localizer_config.hpp"
@@ -62,7 +63,14 @@ class HypothesisTracker {
                         std::size_t particles);
 
   /// Map-local metres in a free cell.
-  [[nodiscard]] bool is_free(double x, double y) const noexcept;
+  [[nodiscard]] bool is_free(double x, double y) const noexcept { return free_.is_free(x, y); }
+
+  /// Beams of this update's scan whose ray, from the sensor to near its endpoint, crosses
+  /// a cell that is not free at `pose` (map-local).
+  [[nodiscard]] std::size_t blocked_beams(const Pose2& pose) const noexcept;
+  // Free-space evidence counts from a tenth of the beams on: grazing rays along corridor
+  // walls cross them at right poses too, after a fraction of a degree of heading error.
+  static constexpr std::size_t kBlockedMargin = 10;
 
  private:
   struct Scored {
@@ -87,15 +95,26 @@ class HypothesisTracker {
   void global_step(std::size_t particles, HypothesisStep& out);
   void track(const Pose2& prediction, const Pose2& delta, std::size_t particles,
              HypothesisStep& out);
-  void rescue(const Scored& ref, HypothesisStep& out);
+  /// Searches around the prediction, over `widen` times the rescue heading window; the
+  /// candidates are glitch candidates when `abrupt` (the fit fell at once).
+  void rescue(const Scored& ref, int widen, bool abrupt, HypothesisStep& out);
   void sweep(const Scored& ref, std::size_t particles, bool lost);
   void prune(const Scored& ref);
-  void maybe_switch(const Scored& ref, double fit, double step, bool lost, std::size_t particles,
-                    HypothesisStep& out);
+  /// `blocked`: blocked_beams() at the prediction.
+  void maybe_switch(const Scored& ref, double fit, std::size_t blocked, double step, bool lost,
+                    std::size_t particles, HypothesisStep& out);
+  /// Beams whose rays cross walls (blocked_beams()) at a competitor and at the prediction,
+  /// and the difference that counts.
+  struct Crossings {
+    std::size_t candidate = 0, reference = 0, margin = 0;
+  };
   [[nodiscard]] bool may_switch(const Competitor& c, const Scored& ref, double fit, double step,
-                                bool lost) const;
-  void add(const Scored& c, const Scored& ref, Competitor::Origin origin, bool lost);
+                                bool lost, const Crossings& free) const;
+  void add(const Scored& c, const Scored& ref, Competitor::Origin origin, bool abrupt);
 
+  /// The scan contradicts a robot at `pose`: a tenth of the beams more than `ref_blocked`
+  /// would have passed through walls or unmapped space.
+  [[nodiscard]] bool contradicted(const Pose2& pose, std::size_t ref_blocked) const noexcept;
   [[nodiscard]] Scored climb(const Pose2& start) const;
   [[nodiscard]] Scored refine(const PoseCandidate& coarse);
   [[nodiscard]] double fit_of(const Scored& s) const noexcept;
@@ -108,11 +127,12 @@ class HypothesisTracker {
   double tau_beams_ = 20.0;  // LikelihoodConfig::effective_beams (<= 0: fixed tempering_)
   double tempering_ = 1.0;
   PoseSearch search_;
+  FreeSpace free_;
   MeasurementModel probe_;  // a few of the scan's beams, for scoring single hypotheses
   std::vector<std::uint32_t> probe_beams_;
-  std::size_t beams_used_ = 0;            // beams the particles are scored on this update
-  std::vector<std::uint64_t> free_mask_;  // one bit per cell, set for free cells
-  int width_ = 0, height_ = 0;
+  std::size_t beams_used_ = 0;               // beams the particles are scored on this update
+  const PreparedBeams* beams_ = nullptr;     // this update's selected beams (during update())
+  float sensor_x_ = 0.0f, sensor_y_ = 0.0f;  // the sensor in the base frame, cells
   double resolution_ = 0.0;
 
   bool global_ = true;
@@ -123,8 +143,10 @@ class HypothesisTracker {
 
   std::vector<Competitor> competitors_;
   bool have_fit_mean_ = false;
-  double fit_mean_ = 0.0;   // the prediction's fit, over ~10 tracking updates
-  double fit_usual_ = 0.0;  // ... and over ~100
+  double fit_mean_ = 0.0;      // the prediction's fit, over ~10 tracking updates
+  double fit_var_ = 0.0;       // its running variance, over ~10
+  double fit_usual_ = 0.0;     // ... and over ~100
+  double blocked_mean_ = 0.0;  // its blocked_beams(), over ~10
   double last_fit_ = 0.0;
   int lost_updates_ = 0;      // consecutive updates the prediction lost its fit
   bool abrupt_loss_ = false;  // ... and it fell within one update

@@ -157,6 +157,7 @@ void Localizer::reset_after_init() {
   r.n_eff = static_cast<double>(p_.size());
   compute_estimate(r);
   clustered_ = r.converged;
+  unimodal_ = 0;
   anchor_ = r.estimate;
   last_ = r;
 }

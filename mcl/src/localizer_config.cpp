@@ -1,5 +1,6 @@
 #include "pgmcl/mcl/localizer_config.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <utility>
@@ -36,7 +37,8 @@ class Validator {
   template <class T>
   void integer(const Field& f, T v, const IntRange& r) const {
     if (std::cmp_less(v, r.lo) || std::cmp_greater(v, r.hi))
-      fail(f.name, "must be " + r.text() + " (got " + std::to_string(v) + ")");
+      fail(f.name, "must be " + r.text() + " (got " + std::to_string(v) + ")" +
+                       r.memory(static_cast<std::uint64_t>(std::max<T>(v, T{0}))));
   }
   void flag(const Field&, bool) const {}
   template <class E, std::size_t N>
@@ -62,16 +64,25 @@ class Validator {
 
 std::string Bounds::text() const {
   const bool has_lo = lo != -kInf, has_hi = hi != kInf;
-  if (has_lo && has_hi) return "in " + interval(format_number(lo), format_number(hi), lo_open, hi_open);
+  if (has_lo && has_hi)
+    return "in " + interval(format_number(lo), format_number(hi), lo_open, hi_open);
   if (has_lo) return std::string("finite and ") + (lo_open ? "> " : ">= ") + format_number(lo);
   if (has_hi) return std::string("finite and ") + (hi_open ? "< " : "<= ") + format_number(hi);
   return "finite";
 }
 
 std::string IntRange::text() const {
-  if (hi == std::numeric_limits<std::uint64_t>::max())
-    return "an integer >= " + std::to_string(lo);
+  if (hi == std::numeric_limits<std::uint64_t>::max()) return "an integer >= " + std::to_string(lo);
   return "an integer in " + interval(std::to_string(lo), std::to_string(hi), false, false);
+}
+
+std::string IntRange::memory(std::uint64_t v) const {
+  if (unit_bytes <= 0.0 || v <= hi) return "";
+  const double bytes = unit_bytes * static_cast<double>(v);
+  char buf[128];
+  std::snprintf(buf, sizeof buf, " (about %.0f bytes each: %.3g would take %.3g GB)", unit_bytes,
+                static_cast<double>(v), bytes / 1e9);
+  return buf;
 }
 
 }  // namespace config_schema

@@ -43,6 +43,11 @@ void Localizer::compute_estimate(UpdateResult& r) {
   const EstimateConfig& ec = cfg_.estimate;
   r.converged = best.weight > ec.converged_weight && pos_std < ec.converged_xy_std &&
                 theta_std < ec.converged_theta_std;
+  // One mode, not yet compact: what sparse scans leave of a settled cluster. A cloud that
+  // still spans the map can be one big cluster too, hence the (wider) spread bound.
+  constexpr double kOneModeSpread = 4.0;
+  one_mode_ = best.weight > ec.converged_weight && pos_std < kOneModeSpread * ec.converged_xy_std &&
+              theta_std < kOneModeSpread * ec.converged_theta_std;
 }
 
 }  // namespace pgmcl

@@ -22,6 +22,10 @@ double ms_since(Clock::time_point t0) noexcept {
 bool finite(const Pose2& p) noexcept {
   return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta);
 }
+// The tempering limit is lifted once one cluster has held nearly all the weight for this
+// many scans in a row.
+constexpr int kUnimodalUpdates = 3;
+
 [[noreturn]] void bad_scan(const std::string& why) {
   throw std::invalid_argument("Localizer::update: " + why);
 }
@@ -117,6 +121,7 @@ UpdateResult Localizer::update(const Pose2& odometry_pose, const LaserScan& scan
   // The filter's own dynamics (tempering limit, recovery averages) follow the cluster;
   // what it reports also doubts a cluster that another place outweighs so far.
   clustered_ = r.converged;
+  unimodal_ = one_mode_ ? unimodal_ + 1 : 0;
   if (r.alternative_evidence > 0.0) r.converged = false;
   r.timings.estimate_ms = ms_since(te);
 
@@ -200,16 +205,20 @@ bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, Up
     update_recovery_averages(w_avg, r);
   }
 
-  // Tempered sum of per-beam log-likelihoods (see LikelihoodConfig for why). Until the
-  // filter has converged, the exponent is also lowered where this scan alone would
-  // collapse the effective sample size (LikelihoodConfig::min_ess_ratio). Once converged
-  // the limit is off: it would only slow the pull of a compact but offset cluster.
+  // Tempered sum of per-beam log-likelihoods (see LikelihoodConfig for why). While the
+  // set holds several hypotheses, the exponent is also lowered where this scan alone
+  // would collapse the effective sample size (LikelihoodConfig::min_ess_ratio). Once
+  // converged, or once a single cluster has held nearly all the weight for a few scans,
+  // the limit is off: no other mode is left to keep, and it would only slow the
+  // contraction of a compact but offset, or broad, cluster (sparse scans re-spread it
+  // every step). One scan is not enough: a sparse one can single out a wrong place.
   const LikelihoodConfig& lc = cfg_.likelihood;
   const double tau_cfg =
       lc.effective_beams > 0.0 ? std::min(1.0, lc.effective_beams / m) : lc.tempering;
   const double tau =
-      clustered_ ? tau_cfg
-                 : detail::limit_tempering(p_.log_w, ws_.scan_ll, tau_cfg, lc.min_ess_ratio);
+      clustered_ || unimodal_ >= kUnimodalUpdates
+          ? tau_cfg
+          : detail::limit_tempering(p_.log_w, ws_.scan_ll, tau_cfg, lc.min_ess_ratio);
   r.tempering = tau;
   for (std::size_t i = 0; i < n; ++i) p_.log_w[i] += tau * ws_.scan_ll[i];
   (void)normalise_log_weights(p_.log_w, p_.w);

@@ -62,6 +62,19 @@ TEST(CliConvert, ErrorsNameWhatIsWrong) {
   r = run_pgmcl("convert --log junk.bag --out x.log", dir);
   EXPECT_EQ(r.code, 1);
   EXPECT_EQ(r.err.find("pgmcl: error: junk.bag: "), 0u) << r.err;
+  // All or nothing: the failed runs above left neither x.log nor a temporary beside it.
+  for (const auto& e : std::filesystem::directory_iterator(dir.path()))
+    EXPECT_EQ(e.path().filename().string().find("x."), std::string::npos) << e.path();
+  for (const auto& e : std::filesystem::directory_iterator(dir.path()))
+    EXPECT_EQ(e.path().filename().string().find(".pgmcl-"), std::string::npos) << e.path();
+  // The output may not be the input under another name.
+  const std::string log_text = cli_test::read_text(dir.file("room.log"));
+  std::filesystem::create_symlink("room.log", dir.file("alias.bag"));
+  r = run_pgmcl("convert --log room.log --out alias.bag", dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--out: alias.bag is also the input --log room.log"), std::string::npos)
+      << r.err;
+  EXPECT_EQ(cli_test::read_text(dir.file("room.log")), log_text);
 }
 
 TEST(CliLocalizeBag, SameAccuracyAsTheLogItWasConvertedFrom) {

@@ -110,7 +110,7 @@ TEST(CliMap, BadInputsNameFileLineAndField) {
   cli_test::write_text(dir.file("bad.log"),
                        "FLASER 3 1.0 1.0 1.0 0 0 0 0 0 0 1.0 host 1.0\n"
                        "FLASER 3 1.0 oops 1.0 0 0 0 0 0 0 2.0 host 2.0\n"
-                       "FLASER 3 1.0 1.0 1.0 0 0 0 0 0 0 3.0 host 3.0\n"
+                       "FLASER 3 1.0 1.0 2.0 0 0 0 0 0 0 3.0 host 3.0\n"
                        "FLASER 3 1.0 1.0\n");
   RunResult r = run_pgmcl("map --log bad.log --out m.yaml --strict", dir);
   EXPECT_EQ(r.code, 1);

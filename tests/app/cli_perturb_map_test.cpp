@@ -156,12 +156,12 @@ TEST(CliPerturbMap, BadValuesAndOverwritingTheInputAreRefused) {
           {"--out x.yaml --erase 0.3", "--erase: expected FRACTION,BLOCK_M, got '0.3'"},
           {"--out x.yaml --erase 0.3,0", "--erase: BLOCK_M must be > 0, got 0"},
           {"--out x.yaml --erase 0.3,0.01", "--erase: BLOCK_M 0.01 m is less than half a cell"},
-          {"--out x.yaml --blur -1", "--blur: SIGMA_CELLS must be >= 0, got -1"},
+          {"--out x.yaml --blur -1", "--blur: SIGMA_CELLS must be in [0, 100], got -1"},
           {"--out x.yaml --blur inf", "--blur: expected SIGMA_CELLS, got 'inf'"},
           {"--out x.yaml --thicken 1.5", "--thicken: CELLS must be a whole number in [0, 1000]"},
-          {"--out a.yaml --blur 1", "would overwrite the input map's YAML"},
-          {"--out ./sub/../a.yaml --thicken 1", "would overwrite the input map's YAML"},
-          {"--out b.yaml --thicken 1", "would overwrite the input map's image"},
+          {"--out a.yaml --blur 1", "a.yaml is also the input --map a.yaml"},
+          {"--out ./sub/../a.yaml --thicken 1", "is also the input --map a.yaml"},
+          {"--out b.yaml --thicken 1", "b.pgm is also the input --map's image b.pgm"},
       },
       {"x.yaml"});
   EXPECT_EQ(read_text(dir.file("a.yaml")), yaml);

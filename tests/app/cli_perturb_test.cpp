@@ -125,7 +125,7 @@ TEST(CliPerturb, BadArgumentsAreUsageErrors) {
       "perturb --log in.log --odom-noise 0.1,-0.1,0.1,0 --seed 1 --out raw.log --truth-out t.tum",
       dir);
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("A2 must be >= 0"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("A2 must be in [0, 100]"), std::string::npos) << r.err;
   r = run_pgmcl("perturb --log in.log --odom-noise 0,0,0,0 --out raw.log --truth-out t.tum", dir);
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--seed"), std::string::npos) << r.err;

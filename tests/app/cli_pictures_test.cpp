@@ -85,6 +85,13 @@ TEST(CliPictures, PngRoundTripsThroughStbImage) {
   stbi_image_free(data);
   EXPECT_EQ(std::vector<unsigned char>(c.data().begin(), c.data().end()), px);
   EXPECT_THROW(write_png(c, "/nonexistent-dir/x.png"), io::IoError);
+  // A full disk: stb ignores fwrite's result; write_png does not.
+  try {
+    write_png(c, "/dev/full");
+    ADD_FAILURE() << "a write to /dev/full succeeded";
+  } catch (const io::IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("No space left on device"), std::string::npos) << e.what();
+  }
 }
 
 TEST(CliPictures, MapFramePutsWorldPointsOnTheirCells) {

@@ -151,3 +151,43 @@ TEST(CarmenMalformed, EveryTruncationNamesTheFirstMissingField) {
 
 }  // namespace
 }  // namespace pgmcl::io
+
+namespace pgmcl::io {
+namespace {
+
+// The records' memory is capped (CarmenReadOptions::max_bytes): the error names the line
+// that crosses it, strict or not.
+TEST(CarmenMalformed, RecordsPastTheMemoryLimitAreAnErrorAtTheirLine) {
+  std::string text;
+  for (int i = 0; i < 50; ++i) text += "ODOM 0 0 0 0 0 0 " + std::to_string(i) + " h 0\n";
+  CarmenReadOptions opt;
+  opt.max_bytes = 20 * sizeof(OdomRecord);
+  try {
+    (void)parse_carmen(text, "big.log", opt);
+    ADD_FAILURE() << "50 records passed a limit of 20";
+  } catch (const FormatError& e) {
+    EXPECT_EQ(e.line(), 21u);
+    EXPECT_EQ(e.field(), "log");
+  }
+  opt.max_bytes = 50 * sizeof(OdomRecord);
+  EXPECT_EQ(parse_carmen(text, "big.log", opt).odometry.size(), 50u);
+}
+
+// A ROBOTLASER1 / RAWLASER header whose field of view disagrees with resolution x readings
+// drops the line (field_of_view); fov = res x (n - 1) and res x n are both accepted.
+TEST(CarmenMalformed, FieldOfViewMustSpanTheReadings) {
+  const auto raw = [](const std::string& fov) {
+    return "RAWLASER1 0 -1.5 " + fov + " 1.5 8 0.01 0 3 1 2 3 0 1 h 1\n";
+  };
+  EXPECT_EQ(parse_carmen(raw("3"), "t").report.malformed, 0u);    // 1.5 x (3 - 1)
+  EXPECT_EQ(parse_carmen(raw("4.5"), "t").report.malformed, 0u);  // 1.5 x 3
+  const CarmenLog bad = parse_carmen(raw("1"), "t");
+  ASSERT_EQ(bad.report.malformed, 1u);
+  EXPECT_EQ(bad.report.malformed_lines[0].field, "field_of_view");
+  CarmenReadOptions strict;
+  strict.strict = true;
+  EXPECT_THROW((void)parse_carmen(raw("1"), "t", strict), FormatError);
+}
+
+}  // namespace
+}  // namespace pgmcl::io

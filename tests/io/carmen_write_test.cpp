@@ -59,7 +59,7 @@ CarmenLog every_record_type() {
     raw.has_poses = false;
     raw.laser_pose = raw.odom_pose = {};
     raw.scan.range_max = 8.0;
-    raw.config = {1, 1.0, 0.01, 0};
+    raw.config = {1, 4.0 * raw.scan.angle_increment, 0.01, 0};  // fov spans the 5 readings
     log.scans.push_back(raw);
   }
   return log;

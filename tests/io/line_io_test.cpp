@@ -78,3 +78,39 @@ TEST(LineIo, OpenFailuresAreIoErrors) {
 
 }  // namespace
 }  // namespace pgmcl::io
+
+namespace pgmcl::io {
+namespace {
+
+// A line past the limit (a gzip bomb's one endless line) is a FormatError at that line,
+// found before the whole line is held in memory; folders are refused when opened.
+TEST(LineIo, LinesPastTheLimitAndFoldersAreRefused) {
+  const test::TempDir dir("line_io_limits");
+  {
+    LineWriter w(dir.file("long.txt.gz"));
+    w.write_line("short");
+    w.write_line(std::string(5000, 'a'));
+    w.close();
+  }
+  LineReader r(dir.file("long.txt.gz"), 4096);
+  std::string_view line;
+  ASSERT_TRUE(r.next(line));
+  try {
+    (void)r.next(line);
+    ADD_FAILURE() << "a 5000-byte line passed a 4096-byte limit";
+  } catch (const FormatError& e) {
+    EXPECT_EQ(e.line(), 2u);
+    EXPECT_EQ(e.field(), "line");
+  }
+  EXPECT_THROW(LineReader{dir.path().string()}, IoError);
+  EXPECT_NO_THROW(check_record_memory(kMaxRecordBytes / 8, 8, "f", 3));
+  try {
+    check_record_memory(kMaxRecordBytes / 8 + 1, 8, "f", 3);
+    ADD_FAILURE() << "past the record memory limit";
+  } catch (const FormatError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("f:3: file: holds more than", 0), 0u) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace pgmcl::io

@@ -83,3 +83,48 @@ TEST(OdometryPairing, IntelScansAllInsideTheOdomSpan) {
 
 }  // namespace
 }  // namespace pgmcl::io
+
+namespace pgmcl::io {
+namespace {
+
+// Stamps rounded to whole seconds: two ODOM + FLASER pairs share second 10. By time both
+// scans would get the group's last odometry (x = 2); by file order each gets its own.
+TEST(OdometryPairing, SharedStampsArePairedByFileOrderAndCounted) {
+  const char* text =
+      "ODOM 1 0 0 0 0 0 10 h 10\n"
+      "FLASER 2 1 1 0 0 0 0 0 0 10 h 10\n"
+      "ODOM 2 0 0 0 0 0 10 h 10\n"
+      "FLASER 2 1 1 0 0 0 0 0 0 10 h 10\n"
+      "ODOM 3 0 0 0 0 0 11 h 11\n"
+      "ODOM 4 0 0 0 0 0 12 h 12\n"
+      "FLASER 2 1 1 0 0 0 0 0 0 12 h 12\n";  // alone in its second, but the log is coarse
+  const CarmenLog log = parse_carmen(text, "t");
+  ASSERT_EQ(log.report.malformed, 0u) << log.report.summary();
+  const PairedScans p = pair_odometry(log);
+  ASSERT_EQ(p.scans.size(), 3u);
+  EXPECT_EQ(p.scans[0].odom.x, 1.0);
+  EXPECT_EQ(p.scans[1].odom.x, 2.0);
+  EXPECT_EQ(p.scans[2].odom.x, 4.0);
+  EXPECT_EQ(p.report.shared_stamps, 2u);
+  EXPECT_EQ(p.report.first_shared_line, 2u);
+  EXPECT_EQ(p.report.by_file_order, 3u);
+  EXPECT_EQ(p.report.odom_repeated_stamps, 1u);
+  EXPECT_EQ(p.report.first_repeated_odom_line, 3u);
+}
+
+// Distinct stamps keep the interpolation (and nothing is reported).
+TEST(OdometryPairing, DistinctStampsAreInterpolated) {
+  const char* text =
+      "ODOM 0 0 0 0 0 0 10 h 10\n"
+      "FLASER 2 1 1 0 0 0 0 0 0 10.5 h 10.5\n"
+      "ODOM 2 0 0 0 0 0 11 h 11\n";
+  const PairedScans p = pair_odometry(parse_carmen(text, "t"));
+  ASSERT_EQ(p.scans.size(), 1u);
+  EXPECT_DOUBLE_EQ(p.scans[0].odom.x, 1.0);
+  EXPECT_EQ(p.report.shared_stamps, 0u);
+  EXPECT_EQ(p.report.by_file_order, 0u);
+  EXPECT_EQ(p.report.odom_repeated_stamps, 0u);
+}
+
+}  // namespace
+}  // namespace pgmcl::io

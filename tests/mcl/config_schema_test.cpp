@@ -113,7 +113,7 @@ TEST(ConfigSchema, ProblemsSayWhatIsAllowedAndWhatWasGiven) {
       {[](LocalizerConfig& c) { c.motion.noise.a3 = -0.1; }, "motion.noise.a3",
        "must be in [0, 100] (got -0.1)"},
       {[](LocalizerConfig& c) { c.likelihood.beam.sigma_along = 0.0; },
-       "likelihood.beam.sigma_along", "must be finite and > 0 (got 0)"},
+       "likelihood.beam.sigma_along", "must be in (0, 10] (got 0)"},
       {[](LocalizerConfig& c) { c.likelihood.beam.w_hit = 0.9; }, "likelihood.beam.w_rand",
        "must make w_hit + w_rand = 1 within 1e-9"},
       {[](LocalizerConfig& c) { c.filter.kld.max_particles = 100; }, "filter.kld.max_particles",
@@ -121,7 +121,7 @@ TEST(ConfigSchema, ProblemsSayWhatIsAllowedAndWhatWasGiven) {
       {[](LocalizerConfig& c) { c.filter.particles = 0; }, "filter.particles",
        "must be an integer in [1, 10000000] (got 0)"},
       {[](LocalizerConfig& c) { c.threads = -1; }, "threads",
-       "must be an integer in [0, 4096] (got -1)"},
+       "must be an integer in [0, 1024] (got -1)"},
       {[](LocalizerConfig& c) { c.hypotheses.drop_evidence = 1.0; }, "hypotheses.drop_evidence",
        "must be finite and < 0 (got 1)"},
       {[](LocalizerConfig& c) {

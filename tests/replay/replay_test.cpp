@@ -95,8 +95,9 @@ TEST(Replay, WarnsWhenTheTruthDoesNotCoverTheFirstScanAndStartsGlobally) {
   job.config.filter.global_particles = 2000;
   const ReplayResult r = run(job);
   EXPECT_EQ(r.start, "global localisation");
-  ASSERT_EQ(r.warnings.size(), 1u);
+  ASSERT_EQ(r.warnings.size(), 2u);
   EXPECT_NE(r.warnings[0].find("no ground-truth pose at the first scan"), std::string::npos);
+  EXPECT_NE(r.warnings[1].find("the accuracy figures are over those only"), std::string::npos);
 }
 
 TEST(Replay, ALogWithoutOdometryIsAUsageError) {

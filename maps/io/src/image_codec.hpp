@@ -23,8 +23,8 @@ struct Image {
   [[nodiscard]] bool has_alpha() const noexcept { return channels == 2 || channels == 4; }
 };
 
-/// Upper bound on decoded pixels (width * height): 2^28, about 16 km square at 5 cm.
-inline constexpr std::uint64_t kMaxPixels = std::uint64_t{1} << 28;
+/// Upper bound on decoded pixels (width * height): kMaxCells.
+inline constexpr std::uint64_t kMaxPixels = kMaxCells;
 
 /// Reads a whole file; `what` describes it in the error ("image file", "map YAML file").
 [[nodiscard]] Bytes read_file_bytes(const std::string& path, const std::string& what);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 
@@ -26,6 +27,16 @@ std::string zlib_problem(int code, const z_stream& zs) {
 }  // namespace
 
 Bytes read_file_bytes(const std::string& path, const std::string& what) {
+  // A folder opens as a stream of unknown size and a device or FIFO never ends: refuse
+  // anything but a regular file (symbolic links followed) before reading.
+  std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::status(path, ec);
+  if (std::filesystem::is_directory(st)) {
+    throw MapError(path, 0, "", what + " is a folder, not a file");
+  }
+  if (std::filesystem::exists(st) && !std::filesystem::is_regular_file(st)) {
+    throw MapError(path, 0, "", what + " is not a regular file (a device, FIFO or socket)");
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     throw MapError(path, 0, "", "cannot open " + what + ": " + std::strerror(errno));
@@ -34,6 +45,11 @@ Bytes read_file_bytes(const std::string& path, const std::string& what) {
   in.seekg(0, std::ios::end);
   const std::streamoff size = in.tellg();
   if (size < 0) throw MapError(path, 0, "", "cannot determine the size of " + what);
+  if (static_cast<std::uint64_t>(size) > kMaxInflated) {
+    throw MapError(
+        path, 0, "",
+        what + " is " + std::to_string(size) + " bytes, more than the 1 GiB any map file may hold");
+  }
   in.seekg(0, std::ios::beg);
   bytes.resize(static_cast<std::size_t>(size));
   if (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), size)) {

@@ -84,14 +84,23 @@ std::string format_double(double v) {
 
 void validate_metadata(const MapMetadata& meta, const std::string& file,
                        const MetadataLines& lines) {
-  if (!std::isfinite(meta.resolution) || meta.resolution <= 0.0) {
-    throw MapError(
-        file, lines.resolution, "resolution",
-        "must be a positive number of metres per cell, got " + format_double(meta.resolution));
+  if (!std::isfinite(meta.resolution) || meta.resolution <= 0.0 ||
+      meta.resolution > kMaxResolution) {
+    throw MapError(file, lines.resolution, "resolution",
+                   "must be a positive number of metres per cell up to " +
+                       format_double(kMaxResolution) + ", got " + format_double(meta.resolution));
   }
   if (!std::isfinite(meta.origin.x) || !std::isfinite(meta.origin.y) ||
       !std::isfinite(meta.origin.theta)) {
     throw MapError(file, lines.origin, "origin", "must hold finite numbers");
+  }
+  if (std::abs(meta.origin.x) > kMaxOriginDistance ||
+      std::abs(meta.origin.y) > kMaxOriginDistance) {
+    throw MapError(file, lines.origin, "origin",
+                   "[" + format_double(meta.origin.x) + ", " + format_double(meta.origin.y) +
+                       "] is more than " + format_double(kMaxOriginDistance) +
+                       " m from the map frame's origin (UTM coordinates stay below 1e7 m): a "
+                       "unit or typing error?");
   }
   const auto in_unit = [](double v) { return std::isfinite(v) && v >= 0.0 && v <= 1.0; };
   if (!in_unit(meta.occupied_thresh)) {

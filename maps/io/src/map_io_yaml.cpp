@@ -112,6 +112,11 @@ namespace {
 
 MapMetadata parse_map_yaml(const std::string& yaml_path, MapLoadReport* report, int* image_line) {
   const detail::Bytes bytes = detail::read_file_bytes(yaml_path, "map YAML file");
+  if (detail::is_pnm(bytes) || detail::is_png(bytes) || detail::is_gzip(bytes)) {
+    throw MapError(yaml_path, 0, "yaml",
+                   "is an image (or gzip), not a map YAML: give the .yaml file that names it "
+                   "(image:, resolution:, origin:)");
+  }
   YAML::Node root;
   try {
     root = YAML::Load(std::string(bytes.begin(), bytes.end()));
@@ -217,22 +222,16 @@ OccupancyGrid load_map(const std::string& yaml_path, MapLoadReport* report) {
   }
 }
 
-void save_map(const OccupancyGrid& grid, const std::string& yaml_path,
-              const std::string& image_name, MapMode mode) {
-  fs::path yaml(yaml_path);
-  if (!std::isfinite(grid.origin().x) || !std::isfinite(grid.origin().y) ||
-      !std::isfinite(grid.origin().theta)) {
-    throw MapError(yaml_path, 0, "origin", "the grid's origin is not finite");
-  }
-  std::string name = image_name;
-  if (name.empty()) name = yaml.stem().string() + (mode == MapMode::kScale ? ".png" : ".pgm");
-  const fs::path image = fs::path(name).is_absolute() ? fs::path(name) : yaml.parent_path() / name;
-  save_map_image(grid, image.string(), mode);
-
+std::string map_yaml_text(const OccupancyGrid& grid, const std::string& image_name, MapMode mode,
+                          const std::string& yaml_path) {
+  MapMetadata meta;
+  meta.resolution = grid.resolution();
+  meta.origin = grid.origin();
+  detail::validate_metadata(meta, yaml_path);
   // Keys and order as nav2's map_saver writes them.
   YAML::Emitter out;
   out << YAML::BeginMap;
-  out << YAML::Key << "image" << YAML::Value << name;
+  out << YAML::Key << "image" << YAML::Value << image_name;
   out << YAML::Key << "mode" << YAML::Value << to_string(mode);
   out << YAML::Key << "resolution" << YAML::Value << detail::format_double(grid.resolution());
   out << YAML::Key << "origin" << YAML::Value << YAML::Flow << YAML::BeginSeq
@@ -243,8 +242,17 @@ void save_map(const OccupancyGrid& grid, const std::string& yaml_path,
   out << YAML::Key << "free_thresh" << YAML::Value << "0.196";
   out << YAML::EndMap;
   if (!out.good()) throw MapError(yaml_path, 0, "yaml", "emitter error: " + out.GetLastError());
-  std::string text = out.c_str();
-  text += "\n";
+  return std::string(out.c_str()) + "\n";
+}
+
+void save_map(const OccupancyGrid& grid, const std::string& yaml_path,
+              const std::string& image_name, MapMode mode) {
+  fs::path yaml(yaml_path);
+  std::string name = image_name;
+  if (name.empty()) name = yaml.stem().string() + (mode == MapMode::kScale ? ".png" : ".pgm");
+  const std::string text = map_yaml_text(grid, name, mode, yaml_path);
+  const fs::path image = fs::path(name).is_absolute() ? fs::path(name) : yaml.parent_path() / name;
+  save_map_image(grid, image.string(), mode);
   detail::write_file_bytes(yaml_path, detail::Bytes(text.begin(), text.end()));
 }
 

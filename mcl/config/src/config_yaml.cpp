@@ -78,7 +78,7 @@ class ReadVisitor {
       std::uint64_t u = v;
       if (top().uint64(f.name, u)) {
         if (std::cmp_less(u, r.lo) || u > r.hi)
-          top().fail(f.name, "must be " + r.text() + ", got " + std::to_string(u));
+          top().fail(f.name, "must be " + r.text() + ", got " + std::to_string(u) + r.memory(u));
         v = static_cast<T>(u);
         note(f.name, true);
       }
@@ -179,8 +179,8 @@ class ReferenceVisitor {
     return k + name;
   }
   void row(const schema::Field& f, const std::string& value, const std::string& allowed) {
-    *out_ << "| `" << key(f.name) << "` | " << value << " | " << f.unit << " | " << allowed
-          << " | " << f.doc << " |\n";
+    *out_ << "| `" << key(f.name) << "` | " << value << " | " << f.unit << " | " << allowed << " | "
+          << f.doc << " |\n";
   }
   std::ostringstream* out_;
   std::vector<const char*> path_;

@@ -52,6 +52,8 @@ class ScenarioParser {
     where_[sims_field] = {m.path(), m.line()};
   }
   [[noreturn]] void validation_failed(const std::string& message) const;
+  /// Refuses a duration that asks for more scans or control steps than memory and time allow.
+  void check_size(const sims::Scenario& sc) const;
   [[nodiscard]] std::string resolve(const std::string& relative) const;
 
   void read_sensor(YamlMap m, sims::Scenario& sc);

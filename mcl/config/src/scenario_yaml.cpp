@@ -2,6 +2,8 @@
 // key read here is a field of a sims struct, so absent keys keep the structs' defaults.
 // The world sections (surfaces, obstacles, label image) are in scenario_yaml_world.cpp.
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "pgmcl/map_io/map_io.hpp"
@@ -197,6 +199,35 @@ void ScenarioParser::validation_failed(const std::string& message) const {
   throw FormatError(path_, best->second, best->first, problem.empty() ? message : problem);
 }
 
+void ScenarioParser::check_size(const sims::Scenario& sc) const {
+  // The simulation holds every scan in memory (and the log built from it once more), and
+  // steps the robot at control_rate: both grow with duration.
+  constexpr double kMaxScans = 1e7;
+  constexpr double kMaxScanBytes = 2.0 * (1u << 30);
+  constexpr double kMaxControlSteps = 1e8;
+  const double scans = std::floor(sc.duration * sc.effective_scan_rate()) + 1.0;
+  const double bytes = scans * (4.0 * sc.sensor.beam_count + sizeof(sims::SimulationRecord));
+  const auto where = where_.find("Scenario.duration");
+  const std::string field = where != where_.end() ? where->second.first : "duration";
+  const std::size_t line = where != where_.end() ? where->second.second : 0;
+  char buf[400];
+  if (!(scans <= kMaxScans && bytes <= kMaxScanBytes)) {
+    std::snprintf(buf, sizeof buf,
+                  "%g s at scan_rate %g Hz asks for %.3g scans of %d beams (%.3g GB); the "
+                  "limits are %.0g scans and %.0f GB: shorten the run or lower scan_rate",
+                  sc.duration, sc.effective_scan_rate(), scans, sc.sensor.beam_count, bytes / 1e9,
+                  kMaxScans, kMaxScanBytes / 1e9);
+    throw FormatError(path_, line, field, buf);
+  }
+  if (!(sc.duration * sc.control_rate <= kMaxControlSteps)) {
+    std::snprintf(buf, sizeof buf,
+                  "%g s at control_rate %g Hz asks for %.3g control steps (limit %.0g): shorten "
+                  "the run or lower control_rate",
+                  sc.duration, sc.control_rate, sc.duration * sc.control_rate, kMaxControlSteps);
+    throw FormatError(path_, line, field, buf);
+  }
+}
+
 ScenarioFile ScenarioParser::parse(maps::OccupancyGrid& map) {
   ScenarioFile out;
   out.path = path_;
@@ -261,6 +292,7 @@ ScenarioFile ScenarioParser::parse(maps::OccupancyGrid& map) {
   } catch (const std::invalid_argument& e) {
     validation_failed(e.what());
   }
+  check_size(sc);
   return out;
 }
 

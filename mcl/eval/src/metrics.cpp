@@ -19,12 +19,32 @@ std::string num(double v) {
   return buf;
 }
 
+/// A double-quoted YAML scalar: any text, including ": " and "#", reads back as itself.
+std::string yaml_quoted(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", static_cast<unsigned char>(c));
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
 std::string text_of(const MetricEntry& e) {
   switch (e.kind) {
     case MetricEntry::Kind::kCount:
       return std::to_string(e.count);
     case MetricEntry::Kind::kNull:
       return "null";
+    case MetricEntry::Kind::kFlag:
+      return e.count != 0 ? "true" : "false";
     case MetricEntry::Kind::kReal:
       break;
   }
@@ -43,6 +63,9 @@ MetricEntry count(const char* key, std::size_t v) {
 }
 MetricEntry real(const char* key, double v) {
   return {MetricEntry::Kind::kReal, key, 0, v};
+}
+MetricEntry flag(const char* key, bool v) {
+  return {MetricEntry::Kind::kFlag, key, v ? 1u : 0u, 0.0};
 }
 MetricEntry maybe(const char* key, const std::optional<double>& v) {
   return v ? real(key, *v) : MetricEntry{MetricEntry::Kind::kNull, key, 0, 0.0};
@@ -65,6 +88,8 @@ std::vector<MetricEntry> metrics_entries(const RunMetrics& m, bool run_figures) 
         real("beams_used_mean", m.beams_used_mean),
         real("fit_mean", m.fit_mean),
         real("converged_fraction", m.converged_fraction),
+        flag("complete", m.complete),
+        count("warning_count", m.warnings.size()),
     };
   }
   if (m.accuracy) {
@@ -161,6 +186,10 @@ double percentile(std::vector<double> values, double p) {
 std::string metrics_yaml(const RunMetrics& m, bool run_figures) {
   std::string out = "# pgmcl run metrics\n";
   for (const auto& [key, value] : rows(m, run_figures)) out += key + ": " + value + "\n";
+  if (run_figures && !m.warnings.empty()) {
+    out += "warnings:\n";
+    for (const std::string& w : m.warnings) out += "  - " + yaml_quoted(w) + "\n";
+  }
   return out;
 }
 

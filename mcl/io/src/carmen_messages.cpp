@@ -1,5 +1,6 @@
 #include "carmen_messages.hpp"
 
+#include <cmath>
 #include <string>
 
 #include "fields.hpp"
@@ -45,6 +46,24 @@ void check_count(std::span<const std::string_view> t, std::size_t expected,
 void read_ranges(FieldCursor& c, std::size_t n, std::vector<float>& out) {
   out.resize(n);
   for (std::size_t i = 0; i < n; ++i) out[i] = static_cast<float>(c.number("range", i));
+}
+
+/// The header's field of view must span the readings: CARMEN writes fov = resolution ×
+/// (n − 1) (some drivers resolution × n). A header that says otherwise would place every
+/// beam at a wrong angle, so the line is refused rather than guessed at.
+void check_field_of_view(double fov, double resolution, std::size_t n) {
+  if (n < 2) return;
+  const double tol = 0.5 * std::abs(resolution) + 1e-3;  // rounding of the logged values
+  const double span = resolution * static_cast<double>(n - 1);
+  if (std::abs(fov - span) <= tol || std::abs(fov - (span + resolution)) <= tol) return;
+  std::string msg = "is ";
+  append_number(msg, fov);
+  msg += " rad, but angular_resolution ";
+  append_number(msg, resolution);
+  msg += " rad x (num_readings " + std::to_string(n) + " - 1) spans ";
+  append_number(msg, span);
+  msg += " rad: the header does not describe these readings";
+  throw FieldError{"field_of_view", msg};
 }
 
 }  // namespace
@@ -124,6 +143,7 @@ CarmenScan parse_config_laser(std::span<const std::string_view> tokens, LaserMes
                 static_cast<std::size_t>(*m), "remissions");
   }
   read_ranges(c, n, s.scan.ranges);
+  check_field_of_view(s.config.field_of_view, s.scan.angle_increment, n);
   const std::size_t m = c.count("num_remissions", kMaxReadings);
   s.remissions.resize(m);
   for (std::size_t j = 0; j < m; ++j)

@@ -48,12 +48,14 @@ class CarmenParser {
         OdomRecord r = detail::parse_odom(tokens_);
         r.line = line_no;
         check_time(type, r.stamp, line_no);
+        add_bytes(sizeof(OdomRecord), line_no);
         log_.odometry.push_back(std::move(r));
         count(type);
       } else if (type == "TRUEPOS") {
         TruePosRecord r = detail::parse_truepos(tokens_);
         r.line = line_no;
         check_time(type, r.stamp, line_no);
+        add_bytes(sizeof(TruePosRecord), line_no);
         log_.truepos.push_back(std::move(r));
         count(type);
       } else if (const auto msg = laser_message(type)) {
@@ -65,6 +67,8 @@ class CarmenParser {
           if (!std::isfinite(r) || r < 0.0f) ++log_.report.invalid_beams;
         }
         check_time(type, s.stamp, line_no);
+        add_bytes(sizeof(CarmenScan) + (s.scan.ranges.size() + s.remissions.size()) * sizeof(float),
+                  line_no);
         log_.scans.push_back(std::move(s));
         count(type);
       } else {
@@ -129,6 +133,16 @@ class CarmenParser {
 
   void count(std::string_view type) { ++log_.report.records[std::string(type)]; }
 
+  void add_bytes(std::size_t n, std::size_t line_no) {
+    bytes_ += n;
+    if (bytes_ <= opt_.max_bytes) return;
+    throw FormatError(log_.report.source, line_no, "log",
+                      "its records take more than " + std::to_string(opt_.max_bytes >> 20) +
+                          " MiB of memory by this line (" + std::to_string(log_.scans.size()) +
+                          " scans, " + std::to_string(log_.odometry.size()) +
+                          " ODOM); split the log");
+  }
+
   void keep(std::vector<LineIssue>& list, LineIssue issue) const {
     if (list.size() < opt_.max_issues) list.push_back(std::move(issue));
   }
@@ -178,6 +192,7 @@ class CarmenParser {
   const CarmenReadOptions& opt_;
   CarmenLog log_;
   std::vector<std::string_view> tokens_;
+  std::size_t bytes_ = 0;
   std::map<std::string, std::pair<double, std::size_t>, std::less<>> last_;
 };
 

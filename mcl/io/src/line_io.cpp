@@ -4,6 +4,8 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
+#include <system_error>
 #include <utility>
 
 #include "pgmcl/io/errors.hpp"
@@ -24,11 +26,26 @@ std::string gz_message(void* f) {
 
 }  // namespace
 
+void check_record_memory(std::size_t records, std::size_t record_bytes, const std::string& source,
+                         std::size_t line) {
+  if (records * record_bytes <= kMaxRecordBytes) return;
+  throw FormatError(source, line, "file",
+                    "holds more than " + std::to_string(kMaxRecordBytes >> 20) +
+                        " MiB of records by this line (" + std::to_string(records) + " of " +
+                        std::to_string(record_bytes) + " bytes each); split it");
+}
+
 bool is_gzip_path(std::string_view path) noexcept {
   return path.size() >= 3 && path.substr(path.size() - 3) == ".gz";
 }
 
-LineReader::LineReader(std::string path) : path_(std::move(path)) {
+LineReader::LineReader(std::string path, std::size_t max_line_bytes)
+    : path_(std::move(path)), max_line_bytes_(max_line_bytes) {
+  // gzopen opens a folder and then fails on the first read with a vague message.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path_, ec)) {
+    throw IoError("cannot read '" + path_ + "': it is a folder, not a file");
+  }
   file_ = gzopen(path_.c_str(), "rb");
   if (file_ == nullptr) {
     throw IoError("cannot open '" + path_ + "' for reading: " + std::strerror(errno));
@@ -49,6 +66,12 @@ bool LineReader::next(std::string_view& line) {
   for (int c = gzgetc(as_gz(file_)); c != -1; c = gzgetc(as_gz(file_))) {
     got_any = true;
     if (c == '\n') break;
+    if (buffer_.size() >= max_line_bytes_) {
+      throw FormatError(path_, line_number_ + 1, "line",
+                        "longer than " + std::to_string(max_line_bytes_ >> 20) + " MiB (" +
+                            std::to_string(max_line_bytes_) +
+                            " bytes) without a line break: not a text log, or corrupt");
+    }
     buffer_.push_back(static_cast<char>(c));
   }
   int code = Z_OK;

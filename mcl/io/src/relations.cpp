@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "fields.hpp"
+#include "pgmcl/io/line_io.hpp"
 
 namespace pgmcl::io {
 namespace {
@@ -25,6 +26,7 @@ void parse_line(std::string_view line, std::size_t line_no, const std::string& s
   r.roll = v[5];
   r.pitch = v[6];
   r.line = line_no;
+  check_record_memory(out.size() + 1, sizeof(Relation), source, line_no);
   out.push_back(r);
 }
 

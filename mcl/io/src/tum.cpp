@@ -27,6 +27,7 @@ void parse_line(std::string_view line, std::size_t line_no, const std::string& s
     throw FormatError(source, line_no, "quaternion",
                       "norm " + std::to_string(norm) + " is too small to be a rotation");
   }
+  check_record_memory(out.size() + 1, sizeof(StampedPose), source, line_no);
   out.push_back({v[0], {v[1], v[2], yaw_from_quaternion(v[4], v[5], v[6], v[7])}});
 }
 

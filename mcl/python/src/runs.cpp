@@ -213,6 +213,9 @@ py::dict metrics_dict(const io::RunMetrics& m, bool run_figures) {
       case io::MetricEntry::Kind::kNull:
         d[py::str(e.key)] = py::none();
         break;
+      case io::MetricEntry::Kind::kFlag:
+        d[py::str(e.key)] = py::bool_(e.count != 0);
+        break;
     }
   }
   return d;

@@ -17,12 +17,15 @@ INTEL_OFFSET = 976052857.338  # intel log time -> relations time (data/README.md
 
 
 def read_metrics_yaml(path):
-    """metrics.yaml is flat `key: value` lines."""
+    """metrics.yaml is flat `key: value` lines, then the `warnings:` list (left out here)."""
     out = {}
     for line in path.read_text().splitlines():
+        if line == "warnings:":
+            break
         if line and not line.startswith("#"):
             key, value = line.split(": ", 1)
-            out[key] = None if value == "null" else float(value)
+            flags = {"true": True, "false": False}
+            out[key] = None if value == "null" else flags[value] if value in flags else float(value)
     return out
 
 

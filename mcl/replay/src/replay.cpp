@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <numbers>
@@ -51,6 +52,46 @@ std::string start_filter(Localizer& loc, const ReplayJob& job, double first_stam
     warnings.emplace_back(buf);
   }
   return "global localisation";
+}
+
+/// Faster than any robot these logs come from: a step that implies more is a glitch. Stamps
+/// can be coarse (whole seconds) or shared, so a step is timed over at least kMinJumpTime.
+constexpr double kMaxSpeed = 10.0;    ///< m/s
+constexpr double kMinJumpTime = 1.0;  ///< seconds
+/// Below this mean fit (UpdateResult::fit) the scans hardly matched the map; a tracked run
+/// on a right map scores 0.9 and more.
+constexpr double kLowFit = 0.25;
+/// Updates after which a filter that never once converged is worth a warning.
+constexpr std::size_t kConvergenceUpdates = 50;
+
+/// Counts odometry steps between consecutive updates that no robot drives.
+struct JumpCounter {
+  std::size_t count = 0;
+  double largest = 0.0, largest_dt = 0.0;
+  std::size_t largest_line = 0;
+  std::optional<io::StampedPose> last;
+
+  void add(const Pose2& odom, double stamp, std::size_t line) {
+    if (last) {
+      const double d = std::hypot(odom.x - last->pose.x, odom.y - last->pose.y);
+      const double dt = stamp - last->stamp;
+      if (d > kMaxSpeed * std::max(dt, kMinJumpTime)) {
+        ++count;
+        if (d > largest) {
+          largest = d;
+          largest_dt = dt;
+          largest_line = line;
+        }
+      }
+    }
+    last = io::StampedPose{stamp, odom};
+  }
+};
+
+std::string g(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", v);
+  return buf;
 }
 
 /// Updates that reported `converged` while more than 1 m off (AteOptions::lost_translation).
@@ -111,9 +152,18 @@ ReplayResult run(const ReplayJob& job, const ReplayHooks& hooks) {
     if (usable++ == 0) first_stamp = log.scans[p.scan_index].stamp;
   }
   if (usable == 0) {
+    std::string why;
+    if (!log.report.malformed_lines.empty()) {
+      // Every scan may have been dropped as malformed: that, not the log's layout, is the news.
+      const io::LineIssue& i = log.report.malformed_lines.front();
+      why = "; " + std::to_string(log.report.malformed) +
+            " malformed line(s) were dropped, the first " + job.log_name + ":" +
+            std::to_string(i.line) + ": " + i.message_type + " " + i.field + ": " + i.message;
+    }
     throw io::UsageError(job.log_name +
                          ": no laser scan with odometry (need ODOM messages or FLASER/"
-                         "ROBOTLASER1 scans, which carry their odometry pose)");
+                         "ROBOTLASER1 scans, which carry their odometry pose)" +
+                         why);
   }
 
   Localizer loc(*job.map, job.config);
@@ -125,6 +175,7 @@ ReplayResult run(const ReplayJob& job, const ReplayHooks& hooks) {
   out.rows.reserve(usable);
   out.trajectory.reserve(usable);
   std::size_t done = 0, out_of_order = 0, unpaired = 0;
+  JumpCounter jumps;
   double last_stamp = -std::numeric_limits<double>::infinity();
   for (const io::PairedScan& p : paired.scans) {
     if (hooks.stop != nullptr && hooks.stop->load(std::memory_order_relaxed)) {
@@ -141,6 +192,7 @@ ReplayResult run(const ReplayJob& job, const ReplayHooks& hooks) {
       continue;
     }
     last_stamp = s.stamp;
+    jumps.add(p.odom, s.stamp, s.line);
     UpdateResult r;
     try {
       r = loc.update(p.odom, s.scan, s.stamp);
@@ -161,6 +213,55 @@ ReplayResult run(const ReplayJob& job, const ReplayHooks& hooks) {
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   out.metrics = acc.summarise(wall_s);
+  out.metrics.complete = out.complete;
+  if (paired.report.shared_stamps > 0) {
+    out.warnings.push_back(
+        job.log_name + ": " + std::to_string(paired.report.shared_stamps) +
+        " scan(s) share their timestamp with other scans or with several ODOM messages (first "
+        "on line " +
+        std::to_string(paired.report.first_shared_line) +
+        "), so time cannot order this log: " + std::to_string(paired.report.by_file_order) +
+        " scan(s) were paired with the ODOM message before them in the file");
+  }
+  if (paired.report.odom_repeated_stamps > 0) {
+    out.warnings.push_back(
+        job.log_name + ": " + std::to_string(paired.report.odom_repeated_stamps) +
+        " ODOM message(s) carry the same stamp as the one before (first on line " +
+        std::to_string(paired.report.first_repeated_odom_line) +
+        "): rounded stamps? Scans between them get the later one's odometry");
+  }
+  if (jumps.count > 0) {
+    out.warnings.push_back(
+        job.log_name + ": " + std::to_string(jumps.count) + " odometry jump(s) faster than " +
+        g(kMaxSpeed) + " m/s between consecutive scans (largest " + g(jumps.largest) + " m in " +
+        g(jumps.largest_dt) + " s, at the scan on line " + std::to_string(jumps.largest_line) +
+        "); the filter moves its particles by them and is likely lost there");
+  }
+  const std::size_t all = out.metrics.updates + out.metrics.skipped_updates;
+  if (all >= 10 && out.metrics.updates * 10 < all) {
+    std::size_t not_moved = 0, no_beams = 0;
+    for (const UpdateRow& u : out.rows) {
+      not_moved += u.skipped == SkipReason::kNotMoved ? 1 : 0;
+      no_beams += u.skipped == SkipReason::kNoValidBeams ? 1 : 0;
+    }
+    out.warnings.push_back("the filter measured only " + std::to_string(out.metrics.updates) +
+                           " of " + std::to_string(all) + " scans (" + std::to_string(not_moved) +
+                           " gated: the odometry moved less than gating.d_min / theta_min; " +
+                           std::to_string(no_beams) +
+                           " without a valid reading: check likelihood.beam.max_range and the "
+                           "ranges), so the trajectory is mostly dead reckoning");
+  } else if (out.metrics.updates >= 10 && out.metrics.fit_mean < kLowFit) {
+    out.warnings.push_back(
+        "the scans hardly matched the map: mean fit " + g(out.metrics.fit_mean) + " over " +
+        std::to_string(out.metrics.updates) +
+        " updates (the fraction of beams ending near a mapped wall; 0.9 and more when "
+        "tracking on the right map), so the estimate means little. Check the map (the right "
+        "one? resolution, origin, mode, negate) and the start pose");
+  } else if (out.metrics.updates >= kConvergenceUpdates && out.metrics.converged_fraction == 0.0) {
+    out.warnings.push_back("the filter never converged in " + std::to_string(out.metrics.updates) +
+                           " updates, so the estimate is a guess. Check the map (negate?) and "
+                           "the start pose");
+  }
   if (out_of_order > 0) {
     out.warnings.push_back(job.log_name + ": skipped " + std::to_string(out_of_order) +
                            " scan(s) stamped before the previous one");
@@ -170,17 +271,41 @@ ReplayResult run(const ReplayJob& job, const ReplayHooks& hooks) {
                            " scan(s) without odometry");
   }
 
+  // Figures over nothing would read as a perfect 0: say so and leave them out instead.
   if (job.truth && !out.trajectory.empty()) {
-    out.ate = io::evaluate_ate(out.trajectory, *job.truth);
-    out.metrics.accuracy = io::accuracy_metrics(*out.ate);
-    count_false_convergence(out.rows, *out.ate, *out.metrics.accuracy);
+    io::AteResult ate = io::evaluate_ate(out.trajectory, *job.truth);
+    if (ate.matched == 0) {
+      out.warnings.push_back("the ground truth matched none of the " +
+                             std::to_string(out.trajectory.size()) +
+                             " estimated poses in time (a different log, or another clock?); "
+                             "no accuracy figures");
+    } else {
+      if (ate.matched < out.trajectory.size()) {
+        out.warnings.push_back("the ground truth covers " + std::to_string(ate.matched) +
+                               " of the " + std::to_string(out.trajectory.size()) +
+                               " estimated poses; the accuracy figures are over those only");
+      }
+      out.ate = std::move(ate);
+      out.metrics.accuracy = io::accuracy_metrics(*out.ate);
+      count_false_convergence(out.rows, *out.ate, *out.metrics.accuracy);
+    }
   }
   if (job.relations && !out.trajectory.empty()) {
     io::RelationOptions ro;
     ro.time_offset = job.relations_time_offset;
-    out.metrics.relations =
-        io::relations_metrics(io::evaluate_relations(out.trajectory, *job.relations, ro));
+    const io::RelationResult rel = io::evaluate_relations(out.trajectory, *job.relations, ro);
+    if (rel.matched == 0) {
+      char offset[64];
+      std::snprintf(offset, sizeof offset, "%.3f", io::kIntelRelationsTimeOffset);
+      out.warnings.push_back("none of the " + std::to_string(rel.relations) +
+                             " relations matched the estimate's stamps (does the log need a "
+                             "time offset? intel: " +
+                             offset + " s); no relations figures");
+    } else {
+      out.metrics.relations = io::relations_metrics(rel);
+    }
   }
+  out.metrics.warnings = out.warnings;
   const ParticlesView pv = loc.particles();
   out.particles.reserve(pv.size());
   for (std::size_t i = 0; i < pv.size(); ++i) out.particles.push_back(pv.global_pose(i));

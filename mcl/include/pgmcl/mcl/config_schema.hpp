@@ -51,20 +51,33 @@ inline constexpr Bounds kAnyFinite{};
 inline constexpr Bounds kPositive{0.0, kInf, true, false};
 inline constexpr Bounds kNonNegative{0.0, kInf, false, false};
 inline constexpr Bounds kNegative{-kInf, 0.0, false, true};
-inline constexpr Bounds kUnit{0.0, 1.0, false, false};        ///< [0, 1]
-inline constexpr Bounds kOpenUnit{0.0, 1.0, true, true};      ///< (0, 1)
-inline constexpr Bounds kUpperUnit{0.0, 1.0, true, false};    ///< (0, 1]
-inline constexpr Bounds kLowerUnit{0.0, 1.0, false, true};    ///< [0, 1)
+inline constexpr Bounds kUnit{0.0, 1.0, false, false};      ///< [0, 1]
+inline constexpr Bounds kOpenUnit{0.0, 1.0, true, true};    ///< (0, 1)
+inline constexpr Bounds kUpperUnit{0.0, 1.0, true, false};  ///< (0, 1]
+inline constexpr Bounds kLowerUnit{0.0, 1.0, false, true};  ///< [0, 1)
 
 /// Allowed values of an integer field, inclusive.
 struct IntRange {
   std::int64_t lo = 0;
   std::uint64_t hi = std::numeric_limits<std::uint64_t>::max();
+  double unit_bytes = 0.0;  ///< memory one unit costs, for the message (0: not a size)
   [[nodiscard]] std::string text() const;
+  /// " (about 110 bytes each: 1e+12 would take 1.1e+05 GB)" for a size above hi, else "".
+  [[nodiscard]] std::string memory(std::uint64_t v) const;
 };
 
-/// Particle counts: 10^7 particles hold about 1 GB of particles and scratch.
-inline constexpr IntRange kParticleCount{1, 10'000'000};
+/// Particle counts: the particle set and the filter's scratch take about 110 bytes per
+/// particle (tests/stress, MillionParticles), so 10^7 particles hold about 1 GB.
+inline constexpr IntRange kParticleCount{1, 10'000'000, 110.0};
+
+/// OpenMP threads: libgomp crashes creating tens of thousands, and past the core count more
+/// threads only take turns.
+inline constexpr int kMaxThreads = 1024;
+
+/// Beam sigmas and the map error, metres: a sigma of 10 m already spreads one reading over a
+/// room; far larger ones only make the kernel reach overflow with a message about cells.
+inline constexpr Bounds kSigma{0.0, 10.0, true, false};
+inline constexpr Bounds kMismatch{0.0, 10.0, false, false};
 
 template <class E>
 struct EnumName {
@@ -131,11 +144,11 @@ void describe_likelihood(V& v, Config& c) {
     v.section("beam", [&] {
       auto& b = l.beam;
       v.number(Field{"sigma_along", "m", "sensor sigma along the beam (Dekan et al., Sec. 5)"},
-               b.sigma_along, kPositive);
+               b.sigma_along, kSigma);
       v.number(Field{"sigma_across", "m", "sensor sigma across the beam (Dekan et al., Sec. 5)"},
-               b.sigma_across, kPositive);
+               b.sigma_across, kSigma);
       v.number(Field{"model_mismatch", "m", "map error, added in quadrature to both sigmas"},
-               b.model_mismatch, kNonNegative);
+               b.model_mismatch, kMismatch);
       v.flag(Field{"add_discretisation", "", "add res²/12 for the position within a cell"},
              b.add_discretisation);
       v.number(Field{"w_hit", "", "weight of the Gaussian hit term"}, b.w_hit, kUnit);
@@ -152,11 +165,11 @@ void describe_likelihood(V& v, Config& c) {
       v.integer(Field{"orientation_bins", "", "planes of the oriented table over [0, pi)"},
                 t.orientation_bins, IntRange{1, 1024});
       v.number(Field{"reach_sigmas", "", "kernel reach; the floor beyond it"}, t.reach_sigmas,
-               kPositive);
+               Bounds{0.0, 100.0, true, false});
       v.number(Field{"isotropy_tolerance", "", "oriented falls back to isotropic below this"},
                t.isotropy_tolerance, kNonNegative);
-      v.integer(Field{"max_table_bytes", "bytes", "a larger table is an error"},
-                t.max_table_bytes, IntRange{1});
+      v.integer(Field{"max_table_bytes", "bytes", "a larger table is an error"}, t.max_table_bytes,
+                IntRange{1});
     });
     v.number(Field{"effective_beams", "", "independent readings a scan is worth; <= 0: tempering"},
              l.effective_beams, kAnyFinite);
@@ -185,8 +198,8 @@ template <class V, class Config>
 void describe_filter(V& v, Config& c) {
   auto& f = c.filter;
   v.section("filter", [&] {
-    v.integer(Field{"particles", "", "after set_pose(); the fixed count without KLD"},
-              f.particles, kParticleCount);
+    v.integer(Field{"particles", "", "after set_pose(); the fixed count without KLD"}, f.particles,
+              kParticleCount);
     v.integer(Field{"global_particles", "", "after global_localize() and at construction"},
               f.global_particles, kParticleCount);
     v.number(Field{"resample_threshold", "", "resample when N_eff < this x N"},
@@ -204,8 +217,7 @@ void describe_filter(V& v, Config& c) {
       v.number(Field{"epsilon", "", "KL bound"}, k.epsilon, kPositive);
       v.number(Field{"delta", "", "z = normal quantile of 1 - delta"}, k.delta, kOpenUnit);
       v.number(Field{"bin_xy", "m", "histogram bin side in x and y"}, k.bin_xy, kPositive);
-      v.number(Field{"bin_theta", "rad", "histogram bin width in heading"}, k.bin_theta,
-               kPositive);
+      v.number(Field{"bin_theta", "rad", "histogram bin width in heading"}, k.bin_theta, kPositive);
     });
     v.section("recovery", [&] {
       auto& r = f.recovery;
@@ -235,8 +247,7 @@ void describe_gating_and_estimate(V& v, Config& c) {
   });
   v.section("estimate", [&] {
     auto& e = c.estimate;
-    v.number(Field{"cluster_xy", "m", "clustering cell side in x and y"}, e.cluster_xy,
-             kPositive);
+    v.number(Field{"cluster_xy", "m", "clustering cell side in x and y"}, e.cluster_xy, kPositive);
     v.number(Field{"cluster_theta", "rad", "clustering cell width in heading"}, e.cluster_theta,
              kPositive);
     v.number(Field{"converged_weight", "", "converged: the best cluster holds more than this"},
@@ -260,8 +271,7 @@ void describe_hypotheses(V& v, Config& c) {
       v.integer(Field{"root_levels", "", "root node side = leaf x 2^root_levels"}, s.root_levels,
                 IntRange{1, 12});
       v.integer(Field{"max_beams", "", "beams the search scores"}, s.max_beams, IntRange{1});
-      v.number(Field{"min_angle_step", "rad", "finest heading step"}, s.min_angle_step,
-               kPositive);
+      v.number(Field{"min_angle_step", "rad", "finest heading step"}, s.min_angle_step, kPositive);
       v.number(Field{"max_angle_step", "rad", "coarsest heading step"}, s.max_angle_step,
                kPositive);
       v.rule("max_angle_step", s.max_angle_step >= s.min_angle_step,
@@ -273,14 +283,14 @@ void describe_hypotheses(V& v, Config& c) {
              h.global_seed_fraction, kUnit);
     v.number(Field{"candidate_margin", "nats", "global candidates within this of the best"},
              h.candidate_margin, kNonNegative);
-    v.integer(Field{"global_budget", "lookups", "beam lookups per global search"},
-              h.global_budget, IntRange{1});
+    v.integer(Field{"global_budget", "lookups", "beam lookups per global search"}, h.global_budget,
+              IntRange{1});
     v.integer(Field{"max_competitors", "", "hypotheses tracked beside the estimate"},
               h.max_competitors, IntRange{0, 1000});
     v.number(Field{"switch_evidence", "nats", "tempered evidence a competitor needs to win"},
              h.switch_evidence, kPositive);
-    v.number(Field{"drop_evidence", "nats", "a competitor below this is dropped"},
-             h.drop_evidence, kNegative);
+    v.number(Field{"drop_evidence", "nats", "a competitor below this is dropped"}, h.drop_evidence,
+             kNegative);
     v.number(Field{"switch_seed_fraction", "", "particles redrawn around a winner"},
              h.switch_seed_fraction, kUnit);
     v.number(Field{"rival_view", "m", "new view a globally proposed place must stay ahead"},
@@ -288,16 +298,18 @@ void describe_hypotheses(V& v, Config& c) {
     v.number(Field{"rescue_fit_ratio", "", "search around the prediction below this x its fit"},
              h.rescue_fit_ratio, kUnit);
     v.number(Field{"rescue_xy", "m", "half-width of that search"}, h.rescue_xy, kNonNegative);
-    v.number(Field{"rescue_theta", "rad", "half-width of that search in heading"},
-             h.rescue_theta, kNonNegative);
-    v.integer(Field{"rescue_budget", "lookups", "beam lookups per rescue search"},
-              h.rescue_budget, IntRange{1});
+    v.number(Field{"rescue_theta", "rad", "half-width of that search in heading"}, h.rescue_theta,
+             kNonNegative);
+    v.integer(Field{"rescue_budget", "lookups", "beam lookups per rescue search"}, h.rescue_budget,
+              IntRange{1});
     v.number(Field{"sweep_share", "", "map sweep lookups per update / the particles' own"},
              h.sweep_share, kNonNegative);
-    v.number(Field{"separation_xy", "m", "closer hypotheses are the same place"},
-             h.separation_xy, kPositive);
+    v.number(Field{"separation_xy", "m", "closer hypotheses are the same place"}, h.separation_xy,
+             kPositive);
     v.number(Field{"separation_theta", "rad", "closer headings are the same place"},
              h.separation_theta, kPositive);
+    v.flag(Field{"free_space", "", "judge hypotheses also by rays that cross walls"},
+           h.free_space);
   });
 }
 
@@ -312,7 +324,7 @@ void describe_config(V& v, Config& c) {
   v.choice(Field{"time_backwards", "", "a stamp earlier than the last: throw or reset"},
            c.time_backwards, kTimePolicies);
   v.integer(Field{"threads", "", "OpenMP threads; 0 = OpenMP's default"}, c.threads,
-            IntRange{0, 4096});
+            IntRange{0, kMaxThreads});
   v.flag(Field{"adaptive_threads", "", "one thread while the team is slower (a busy core)"},
          c.adaptive_threads);
   v.integer(Field{"seed", "", "every random stream derives from it"}, c.seed, IntRange{});

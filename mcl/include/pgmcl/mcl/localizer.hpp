@@ -143,6 +143,8 @@ class Localizer {
   ParticleClusterer clusterer_;
   std::unique_ptr<detail::HypothesisTracker> hypotheses_;  // null when disabled
   bool clustered_ = false;  // the last estimate met EstimateConfig's cluster criterion
+  bool one_mode_ = false;  // the last estimate: one cluster with nearly all the weight, <= 1 m wide
+  int unimodal_ = 0;       // consecutive updates with one_mode_
 
   // Filter state.
   bool have_odom_ = false;

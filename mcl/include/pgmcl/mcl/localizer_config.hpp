@@ -140,6 +140,10 @@ struct HypothesesConfig {
   double sweep_share = 0.25;
   double separation_xy = 1.0;      ///< metres: closer hypotheses are the same place
   double separation_theta = 0.44;  ///< radians (25 deg)
+  /// Judge hypotheses also by the free space their readings cross (a ray through a wall
+  /// contradicts a pose): it vetoes and confirms switches, starts a search when the tracked
+  /// pose's rays start crossing walls, and rules out contradicted places in global search.
+  bool free_space = true;
 };
 
 /// What update() does when `stamp` is earlier than the previous update's stamp.

@@ -44,6 +44,15 @@ class MapError : public std::runtime_error {
   std::string problem_;
 };
 
+/// Limits every loaded map is checked against (and `pgmcl map` before it writes one): a
+/// resolution or origin past them is a typo or a unit error, and the maps pgmcl writes
+/// always load again.
+inline constexpr double kMaxResolution = 1000.0;  ///< metres per cell
+/// Metres from the map frame's origin: UTM northings stay below 10^7 m.
+inline constexpr double kMaxOriginDistance = 1e8;
+/// Cells (width * height) of a map image: 2^28, about 16 km square at 5 cm.
+inline constexpr std::uint64_t kMaxCells = std::uint64_t{1} << 28;
+
 /// map_server's `mode` key.
 enum class MapMode : std::uint8_t { kTrinary, kScale, kRaw };
 
@@ -53,9 +62,10 @@ enum class MapMode : std::uint8_t { kTrinary, kScale, kRaw };
 
 /// The contents of a map_server YAML file. Defaults are map_server's.
 struct MapMetadata {
-  std::string image;              ///< image path as written in the YAML (relative to it)
-  double resolution = 0.05;       ///< metres per cell, > 0
-  Pose2 origin{};                 ///< pose of the lower-left corner of cell (0, 0): m, m, rad
+  std::string image;         ///< image path as written in the YAML (relative to it)
+  double resolution = 0.05;  ///< metres per cell, in (0, kMaxResolution]
+  Pose2 origin{};  ///< pose of the lower-left corner of cell (0, 0): m, m, rad; |x|, |y| <=
+                   ///< kMaxOriginDistance
   double occupied_thresh = 0.65;  ///< occ above this -> occupied; in [0, 1]
   double free_thresh = 0.196;     ///< occ below this -> free; in [0, 1], < occupied_thresh
   bool negate = false;            ///< true: white is occupied, black is free
@@ -102,5 +112,11 @@ void save_map_image(const OccupancyGrid& grid, const std::string& image_path,
 /// (gzipped P5) or ".png".
 void save_map(const OccupancyGrid& grid, const std::string& yaml_path,
               const std::string& image_name = "", MapMode mode = MapMode::kTrinary);
+
+/// The YAML text save_map writes for `grid` with the image `image_name`, for callers that
+/// write the two files themselves (to temporary names, renamed together). Throws MapError
+/// (`yaml_path` names the file) for a grid whose origin or resolution no loader accepts.
+[[nodiscard]] std::string map_yaml_text(const OccupancyGrid& grid, const std::string& image_name,
+                                        MapMode mode, const std::string& yaml_path);
 
 }  // namespace pgmcl::maps

@@ -57,6 +57,10 @@ struct RunMetrics {
   double beams_used_mean = 0.0;     ///< over performed updates
   double fit_mean = 0.0;            ///< UpdateResult::fit over performed updates
   double converged_fraction = 0.0;  ///< of performed updates that reported `converged`
+  /// false: the run was stopped (SIGINT, SIGTERM) and these figures cover its first part.
+  bool complete = true;
+  /// What was reported as a warning during the run (skipped scans, doubtful inputs).
+  std::vector<std::string> warnings;
   std::optional<AccuracyMetrics> accuracy;
   std::optional<RelationsMetrics> relations;
 };
@@ -88,11 +92,12 @@ class MetricsAccumulator {
 };
 
 /// One figure of metrics.yaml. Counts are whole numbers; `kNull` is a figure that does not
-/// exist (converged_after_s of a run that never converged), written `null`.
+/// exist (converged_after_s of a run that never converged), written `null`; `kFlag` is
+/// `true` / `false` (`complete`), held in `count` as 1 / 0.
 struct MetricEntry {
-  enum class Kind { kCount, kReal, kNull } kind = Kind::kReal;
+  enum class Kind { kCount, kReal, kNull, kFlag } kind = Kind::kReal;
   std::string key;
-  std::size_t count = 0;  ///< kCount
+  std::size_t count = 0;  ///< kCount, kFlag
   double real = 0.0;      ///< kReal
 };
 
@@ -107,8 +112,9 @@ struct MetricEntry {
 /// The YAML text of metrics.yaml (keys as in RunMetrics; accuracy and relations keys:
 /// ate_rmse_m, ate_max_m, heading_rmse_deg, converged_after_s (null if never), truth_matched,
 /// relations_trans_m, relations_rot_deg, relations_trans_std_m, relations_rot_std_deg,
-/// relations_used). `run_figures` false leaves out the
-/// filter's own figures (updates .. beams_used_mean), for evaluating a trajectory file.
+/// relations_used; `complete` and, when there are any, the `warnings` list). `run_figures`
+/// false leaves out the filter's own figures (updates .. beams_used_mean, complete,
+/// warnings), for evaluating a trajectory file.
 [[nodiscard]] std::string metrics_yaml(const RunMetrics& m, bool run_figures = true);
 /// Writes metrics_yaml(m, run_figures) to `path`; throws IoError on failure.
 void write_metrics_yaml(const std::string& path, const RunMetrics& m, bool run_figures = true);

@@ -30,6 +30,7 @@
 
 #include "pgmcl/common/laser_scan.hpp"
 #include "pgmcl/common/se2.hpp"
+#include "pgmcl/io/line_io.hpp"
 #include "pgmcl/io/trajectory.hpp"
 
 namespace pgmcl::io {
@@ -175,6 +176,9 @@ struct CarmenReadOptions {
   bool override_sensor_pose = false;
   Pose2 sensor_pose{};
   std::size_t max_issues = 1000;  ///< issue details kept per category
+  /// Bytes the records may take in memory; a larger log is a FormatError at the line that
+  /// crosses it (a gzip bomb of valid lines, or a log to split), strict or not.
+  std::size_t max_bytes = kMaxRecordBytes;
 };
 
 /// Reads a CARMEN log (plain or .gz). Throws IoError if unreadable; FormatError in strict mode.

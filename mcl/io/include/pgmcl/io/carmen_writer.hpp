@@ -25,8 +25,8 @@ namespace pgmcl::io {
 /// the laser pose. laser_pose = odom_pose * scan.sensor_pose; both stamps are `stamp`.
 /// For FLASER, also put set_front_laser_params() into the log's params so the reader restores
 /// range_max and the mounting offset.
-[[nodiscard]] CarmenScan make_scan_record(const LaserScan& scan, double stamp, const Pose2& odom_pose,
-                                          std::string host = "pgmcl");
+[[nodiscard]] CarmenScan make_scan_record(const LaserScan& scan, double stamp,
+                                          const Pose2& odom_pose, std::string host = "pgmcl");
 /// PARAM robot_front_laser_max = scan.range_max, robot_frontlaser_offset = scan.sensor_pose.x.
 void set_front_laser_params(std::map<std::string, std::string>& params, const LaserScan& scan);
 

@@ -8,6 +8,14 @@
 /// of the kept ODOM messages (or in a gap wider than max_gap) falls back to the odometry pose
 /// the scan carries itself (FLASER odom_*, ROBOTLASER1 robot_pose_*); RAWLASERn scans carry
 /// none and stay unpaired. Both cases are counted.
+///
+/// Time cannot order messages that share a stamp (ODOM and scans logged at one time, stamps
+/// rounded to whole seconds): interpolation would give every scan of such a group the last
+/// odometry of the group. A scan whose stamp is held by two or more ODOM messages, or by
+/// another scan of its type, shares its stamp (PairingReport::shared_stamps). A log with
+/// such scans has stamps too coarse to trust, also where they happen not to collide, so
+/// then every scan is paired by file order: with the last ODOM message before it in the
+/// file (PairingReport::by_file_order).
 
 #include <cstddef>
 #include <limits>
@@ -32,10 +40,17 @@ struct PairedScan {
 
 struct PairingReport {
   std::size_t interpolated = 0;
-  std::size_t scan_fields = 0;   ///< fallbacks to the scan's own odometry fields
-  std::size_t unpaired = 0;      ///< kNone
-  std::size_t odom_used = 0;     ///< ODOM messages in the interpolation
-  std::size_t odom_dropped = 0;  ///< ODOM messages dropped for going back in time
+  std::size_t scan_fields = 0;        ///< fallbacks to the scan's own odometry fields
+  std::size_t unpaired = 0;           ///< kNone
+  std::size_t odom_used = 0;          ///< ODOM messages in the interpolation
+  std::size_t odom_dropped = 0;       ///< ODOM messages dropped for going back in time
+  std::size_t shared_stamps = 0;      ///< scans whose stamp is shared (above)
+  std::size_t first_shared_line = 0;  ///< the first of them, 0 if none
+  std::size_t by_file_order = 0;      ///< scans paired with the ODOM message before them
+  /// Kept ODOM messages stamped like the one before (stamps rounded or repeated): time
+  /// cannot place a scan between them.
+  std::size_t odom_repeated_stamps = 0;
+  std::size_t first_repeated_odom_line = 0;
 };
 
 struct PairingOptions {

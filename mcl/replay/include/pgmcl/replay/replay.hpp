@@ -80,6 +80,7 @@ struct ReplayResult {
   std::vector<double> weights;        ///< its normalised weights
   std::string start;                  ///< how the filter started, for messages
   std::vector<std::string> warnings;  ///< skipped scans and the like, for the caller to report
+                                      ///< (also in metrics.warnings)
   bool complete = true;               ///< false when stopped by ReplayHooks::stop
 };
 

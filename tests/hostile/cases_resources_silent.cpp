@@ -1,0 +1,630 @@
+// Corpus cases: crashes and memory (every count has a limit and the error names the field,
+// the value and the memory), and silent wrong results (each now an error or a counted,
+// reported warning).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "hostile_corpus.hpp"
+#include "hostile_util.hpp"
+
+namespace pgmcl::hostile {
+namespace {
+
+/// A scenario file around the bundled lab scene with `extra` top-level keys overridden.
+std::string scenario(const Env& e, const std::string& name, const std::string& keys) {
+  return e.write(name,
+                 "map: " PGMCL_SOURCE_DIR
+                 "/data/maps/scenarios/lab_5mm.yaml\n"
+                 "robot:\n  start: [1.8, 1.6, 0.0]\n  limits: {max_v: 0.3, max_omega: 0.8}\n" +
+                     keys);
+}
+
+/// Adds `d` metres in x to every ODOM and FLASER odometry pose from the `k`-th scan on.
+std::vector<std::string> jump_after(const std::vector<std::string>& lines, int k, double d) {
+  std::vector<std::string> out;
+  int scans = 0;
+  bool after = false;
+  for (const std::string& l : lines) {
+    if (l.rfind("FLASER", 0) == 0 && ++scans == k) after = true;
+    if (!after || (l.rfind("ODOM", 0) != 0 && l.rfind("FLASER", 0) != 0)) {
+      out.push_back(l);
+      continue;
+    }
+    std::vector<std::string> w = words(l);
+    // ODOM x at 1; FLASER laser x and odom x at n + 2 and n + 5.
+    const auto shift = [&](std::size_t i) { w[i] = number(std::stod(w[i]) + d); };
+    if (w[0] == "ODOM") {
+      shift(1);
+    } else {
+      const std::size_t n = std::stoul(w[1]);
+      shift(n + 2);
+      shift(n + 5);
+    }
+    out.push_back(join_words(w));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<Case> resource_cases() {
+  std::vector<Case> c;
+  // Threads: libgomp segfaulted creating 65535; capped at 1024, warned above the cores.
+  c.push_back({"threads_flag_100000",
+               Expect::kError,
+               2,
+               [](const Env& e) { return e.localize("--threads 100000"); },
+               {"--threads", "100000", "[0, 1024]"}});
+  c.push_back({"threads_flag_65535",
+               Expect::kError,
+               2,
+               [](const Env& e) { return e.localize("--threads 65535"); },
+               {"--threads"}});
+  c.push_back({"threads_flag_negative",
+               Expect::kError,
+               2,
+               [](const Env& e) { return e.localize("--threads -4"); },
+               {"--threads"}});
+  c.push_back({"threads_set_65535",
+               Expect::kError,
+               1,
+               [](const Env& e) { return e.localize("--set threads=65535"); },
+               {"--set threads=65535", "threads", "1024"}});
+  c.push_back({"threads_config_file_5000",
+               Expect::kError,
+               1,
+               [](const Env& e) {
+                 e.write("cfg.yaml", "threads: 5000\n");
+                 return e.localize("--config cfg.yaml");
+               },
+               {"cfg.yaml:1", "threads", "5000"}});
+  c.push_back({"threads_above_cores_warns",
+               Expect::kWarning,
+               0,
+               [](const Env& e) { return e.localize("--threads 64"); },
+               {"threads = 64 is more than the"}});
+  // Particle counts: the field, the value and the memory.
+  c.push_back({"particles_1e12_kld_off",
+               Expect::kError,
+               1,
+               [](const Env& e) {
+                 return e.localize(
+                     "--set filter.kld.enabled=false --set filter.particles=1000000000000");
+               },
+               {"filter.particles", "1000000000000", "10000000", "GB"}});
+  c.push_back({"global_particles_1e11_config",
+               Expect::kError,
+               1,
+               [](const Env& e) {
+                 e.write("cfg.yaml", "filter:\n  global_particles: 100000000000\n");
+                 return e.localize("--config cfg.yaml");
+               },
+               {"cfg.yaml:2", "filter.global_particles", "GB"}});
+  c.push_back(
+      {"kld_max_particles_1e10",
+       Expect::kError,
+       1,
+       [](const Env& e) { return e.localize("--set filter.kld.max_particles=10000000000"); },
+       {"filter.kld.max_particles", "GB"}});
+  // A gzipped log whose one line inflates past the line limit.
+  c.push_back({"gzip_bomb_one_line",
+               Expect::kError,
+               1,
+               [](const Env& e) {
+                 e.write_gz("bomb.log.gz", repeat("aaaaaaaaaaaaaaaa", 65u << 20));
+                 return e.localize("", "bomb.log.gz");
+               },
+               {"bomb.log.gz:1", "line", "64 MiB"}});
+  c.push_back({"gzip_bomb_after_valid_lines",
+               Expect::kError,
+               1,
+               [](const Env& e) {
+                 std::vector<std::string> l = e.log_lines();
+                 l.resize(40);
+                 e.write_gz("bomb.log.gz",
+                            join(l) + "ODOM " + repeat("1111111111111111", 65u << 20));
+                 return e.localize("", "bomb.log.gz");
+               },
+               {"bomb.log.gz:41", "line", "MiB"}});
+  c.push_back({"gzip_bomb_for_map",
+               Expect::kError,
+               1,
+               [](const Env& e) {
+                 e.write_gz("bomb.log.gz", repeat("FLASER 1 ", 65u << 20));
+                 return std::string("map --log bomb.log.gz --out m/map.yaml");
+               },
+               {"bomb.log.gz:1", "MiB"}});
+  c.push_back({"gzip_bomb_as_truth",
+               Expect::kError,
+               1,
+               [](const Env& e) {
+                 e.write_gz("bomb.tum.gz", repeat("0 ", 65u << 20));
+                 return e.localize("--truth bomb.tum.gz");
+               },
+               {"bomb.tum.gz:1", "MiB"}});
+  // Scenarios whose duration asks for more scans or control steps than memory holds.
+  c.push_back({"scenario_1e15_scans",
+               Expect::kError,
+               1,
+               [](const Env& e) {
+                 scenario(e, "s.yaml", "duration: 1.0e14\nscan_rate: 10\n");
+                 return std::string("simulate s.yaml --out sim.log");
+               },
+               {"s.yaml:", "duration", "1e+15 scans", "GB"}});
+  c.push_back({"scenario_scan_rate_1e12",
+               Expect::kError,
+               1,
+               [](const Env& e) {
+                 scenario(e, "s.yaml", "duration: 30\nscan_rate: 1.0e12\n");
+                 return std::string("simulate s.yaml --out sim.log");
+               },
+               {"duration", "scan_rate 1e+12 Hz", "GB"}});
+  c.push_back({"scenario_control_steps_1e12",
+               Expect::kError,
+               1,
+               [](const Env& e) {
+                 scenario(e, "s.yaml", "duration: 1.0e6\nscan_rate: 0.001\ncontrol_rate: 1.0e6\n");
+                 return std::string("simulate s.yaml --out sim.log");
+               },
+               {"duration", "control steps"}});
+  c.push_back({"scenario_huge_in_experiment",
+               Expect::kError,
+               1,
+               [](const Env& e) {
+                 scenario(e, "s.yaml", "duration: 1.0e14\n");
+                 e.write("exp.yaml", "name: x\ndata:\n  scenario: s.yaml\nout: out\n");
+                 return std::string("run exp.yaml --quiet");
+               },
+               {"duration", "GB"}});
+  // Sizes that become memory in the other commands.
+  c.push_back(
+      {"map_resolution_1e_minus_6",
+       Expect::kError,
+       2,
+       [](const Env& e) { return "map --log " + e.b.log + " --resolution 1e-6 --out m.yaml"; },
+       {"--resolution", "cells", "GB"}});
+  c.push_back(
+      {"perturb_map_blur_1e12",
+       Expect::kError,
+       2,
+       [](const Env& e) { return "perturb-map --map " + e.b.map + " --out p.yaml --blur 1e12"; },
+       {"--blur", "1e+12"}});
+  c.push_back({"perturb_map_thicken_1e9",
+               Expect::kError,
+               2,
+               [](const Env& e) {
+                 return "perturb-map --map " + e.b.map + " --out p.yaml --thicken 1000000000";
+               },
+               {"--thicken"}});
+  c.push_back(
+      {"table_bytes_limit",
+       Expect::kError,
+       1,
+       [](const Env& e) { return e.localize("--set likelihood.table.max_table_bytes=1000"); },
+       {"max_table_bytes", "bytes"}});
+  c.push_back({"calibrate_readings_1e12",
+               Expect::kError,
+               2,
+               [](const Env&) {
+                 return std::string("calibrate range --simulate --readings 1000000000000");
+               },
+               {"--readings"}});
+  c.push_back({"pgm_header_100000_square",
+               Expect::kError,
+               1,
+               [](const Env& e) {
+                 e.write("huge.pgm", "P5\n100000 100000\n255\n" + std::string(16, '\xfe'));
+                 e.write("huge.yaml",
+                         "image: huge.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n"
+                         "occupied_thresh: 0.65\nfree_thresh: 0.196\nnegate: 0\n");
+                 return e.localize("", "", "huge.yaml");
+               },
+               {"huge.pgm", "pixels"}});
+  c.push_back({"num_readings_1e9_line_dropped",
+               Expect::kWarning,
+               0,
+               [](const Env& e) {
+                 std::vector<std::string> l = e.log_lines();
+                 l.push_back("FLASER 1000000000 1 2 3");
+                 return e.localize("", e.write("l.log", join(l)));
+               },
+               {"dropped 1 malformed line", "num_readings"}});
+  return c;
+}
+
+std::vector<Case> silent_cases() {
+  std::vector<Case> c;
+  const auto near_end = [](const Env& e, const RunResult&) { expect_final_pose_near(e, 0.5); };
+  // Equal timestamps: a group of scans used to get the group's last odometry.
+  const auto near_raw_end = [](const Env& e, const RunResult&) {
+    expect_final_pose_near(e, 0.5, true);
+  };
+  const auto rounded = [](bool odom, bool scans, double step) {
+    return [odom, scans, step](const Env& e) {
+      return e.localize(
+          "", e.write("r.log",
+                      join(restamp(
+                          e.raw_lines(), [step](double t) { return step * std::floor(t / step); },
+                          odom, scans))));
+    };
+  };
+  c.push_back({"stamps_rounded_to_seconds",
+               Expect::kWarning,
+               0,
+               rounded(true, true, 1.0),
+               {"share their timestamp", "paired with the ODOM message before them"},
+               near_raw_end});
+  c.push_back({"stamps_rounded_to_5_seconds",
+               Expect::kWarning,
+               0,
+               rounded(true, true, 5.0),
+               {"share their timestamp"},
+               near_raw_end});
+  c.push_back({"scan_stamps_rounded_to_5_s_odom_exact",
+               Expect::kWarning,
+               0,
+               rounded(false, true, 5.0),
+               {"share their timestamp"},
+               near_raw_end});
+  c.push_back({"odom_stamps_rounded_scans_exact",
+               Expect::kWarning,
+               0,
+               rounded(true, false, 1.0),
+               {"ODOM message(s) carry the same stamp"},
+               near_raw_end});
+  c.push_back({"short_log_rounded_without_collisions",
+               Expect::kAccepted,
+               0,
+               [](const Env& e) {
+                 return e.localize("", e.write("r.log", join(restamp(e.log_lines(), [](double t) {
+                                                 return std::floor(t);
+                                               }))));
+               },
+               {},
+               near_end});
+  c.push_back({"every_stamp_identical",
+               Expect::kWarning,
+               0,
+               [](const Env& e) {
+                 return e.localize(
+                     "",
+                     e.write("r.log", join(restamp(e.log_lines(), [](double) { return 1000.0; }))));
+               },
+               {"share their timestamp"},
+               near_end});
+  // Odometry jumps nobody drives.
+  for (const auto& [name, d] :
+       {std::pair{"odometry_jump_1e9_m", 1e9}, std::pair{"odometry_jump_1e6_m", 1e6},
+        std::pair{"odometry_jump_500_m", 500.0}, std::pair{"odometry_jump_minus_1e30_m", -1e30}}) {
+    const double jump = d;
+    c.push_back({name,
+                 Expect::kWarning,
+                 0,
+                 [jump](const Env& e) {
+                   return e.localize("",
+                                     e.write("j.log", join(jump_after(e.log_lines(), 60, jump))));
+                 },
+                 {"odometry jump", "faster than 10 m/s"}});
+  }
+  c.push_back({"odometry_jump_scan_fields_only",
+               Expect::kWarning,
+               0,
+               [](const Env& e) {
+                 std::vector<std::string> l;
+                 for (const std::string& s : jump_after(e.log_lines(), 60, 1e9))
+                   if (s.rfind("ODOM", 0) != 0) l.push_back(s);
+                 return e.localize("", e.write("j.log", join(l)));
+               },
+               {"odometry jump"}});
+  // Start poses outside the map, in a wall, or in degrees.
+  c.push_back({"init_far_outside",
+               Expect::kError,
+               2,
+               [](const Env& e) { return e.localize("--init 1e6,1e6,0"); },
+               {"--init", "outside the map", "x in [-20.9, 21.55]"}});
+  c.push_back({"init_just_outside",
+               Expect::kError,
+               2,
+               [](const Env& e) { return e.localize("--init 21.7,0,0"); },
+               {"--init", "outside"}});
+  c.push_back({"init_negative_far",
+               Expect::kError,
+               2,
+               [](const Env& e) { return e.localize("--init -1e9,-1e9,1"); },
+               {"--init"}});
+  c.push_back({"init_in_a_wall",
+               Expect::kWarning,
+               0,
+               [](const Env& e) { return e.localize("--init " + pose_text(e.b.wall)); },
+               {"--init", "occupied cell"}});
+  c.push_back({"init_heading_degrees_20",
+               Expect::kWarning,
+               0,
+               [](const Env& e) { return e.localize("--init 0.6,-0.03,20"); },
+               {"--init", "beyond ±2π", "20 degrees"}});
+  c.push_back({"init_heading_degrees_minus_340",
+               Expect::kWarning,
+               0,
+               [](const Env& e) { return e.localize("--init 0.6,-0.03,-340"); },
+               {"beyond ±2π"}});
+  c.push_back({"init_empty",
+               Expect::kError,
+               2,
+               [](const Env& e) { return e.localize("--init ''"); },
+               {"--init", "''"}});
+  c.push_back({"init_blank",
+               Expect::kError,
+               2,
+               [](const Env& e) { return e.localize("--init ' '"); },
+               {"--init"}});
+  c.push_back({"init_two_numbers",
+               Expect::kError,
+               2,
+               [](const Env& e) { return e.localize("--init 0.6,0"); },
+               {"--init", "2 values"}});
+  c.push_back({"init_nan",
+               Expect::kError,
+               2,
+               [](const Env& e) { return e.localize("--init nan,0,0"); },
+               {"--init"}});
+  c.push_back({"init_and_global",
+               Expect::kError,
+               2,
+               [](const Env& e) { return e.localize("--init 0.6,0,0 --global"); },
+               {"--global"}});
+  c.push_back({"experiment_init_outside",
+               Expect::kError,
+               2,
+               [](const Env& e) {
+                 e.write("exp.yaml", "name: x\nmap: " + e.b.map + "\ndata:\n  log: " + e.b.log +
+                                         "\ninit: [1.0e6, 1.0e6, 0]\nout: out\n");
+                 return std::string("run exp.yaml --quiet");
+               },
+               {"exp.yaml: init", "outside the map"}});
+  // Maps with nothing to match.
+  c.push_back({"map_all_free",
+               Expect::kError,
+               1,
+               [](const Env& e) {
+                 e.write("free.pgm", "P5\n200 200\n255\n" + std::string(40000, '\xfe'));
+                 e.write("free.yaml",
+                         "image: free.pgm\nresolution: 0.05\norigin: [-5, -5, 0]\n"
+                         "occupied_thresh: 0.65\nfree_thresh: 0.196\nnegate: 0\n");
+                 return e.localize("--init 0,0,0", "", "free.yaml");
+               },
+               {"free.yaml", "no occupied cell", "40000 free"}});
+  c.push_back({"map_all_unknown",
+               Expect::kError,
+               1,
+               [](const Env& e) {
+                 e.write("u.pgm", "P5\n200 200\n255\n" + std::string(40000, '\xcd'));
+                 e.write("u.yaml",
+                         "image: u.pgm\nresolution: 0.05\norigin: [-5, -5, 0]\n"
+                         "occupied_thresh: 0.65\nfree_thresh: 0.196\nnegate: 0\n");
+                 return e.localize("--init 0,0,0", "", "u.yaml");
+               },
+               {"no occupied cell"}});
+  c.push_back({"map_raw_mode_on_trinary_image",
+               Expect::kError,
+               1,
+               [](const Env& e) {
+                 return e.localize("", "",
+                                   e.map_yaml("raw.yaml",
+                                              "mode: raw\nresolution: 0.05\norigin: "
+                                              "[-20.9, -26.7, 0]\nnegate: 0\n"
+                                              "occupied_thresh: 0.65\nfree_thresh: 0.196\n"));
+               },
+               {"raw.yaml", "no occupied cell", "`mode`"}});
+  c.push_back({"map_occupied_thresh_1",
+               Expect::kError,
+               1,
+               [](const Env& e) {
+                 return e.localize("", "",
+                                   e.map_yaml("t.yaml",
+                                              "resolution: 0.05\norigin: [-20.9, -26.7, 0]\n"
+                                              "negate: 0\noccupied_thresh: 1.0\n"
+                                              "free_thresh: 0.196\n"));
+               },
+               {"no occupied cell"}});
+  c.push_back({"map_resolution_1e9",
+               Expect::kError,
+               1,
+               [](const Env& e) {
+                 return e.localize("", "",
+                                   e.map_yaml("r.yaml",
+                                              "resolution: 1.0e9\norigin: [-20.9, -26.7, 0]\n"
+                                              "negate: 0\noccupied_thresh: 0.65\n"
+                                              "free_thresh: 0.196\n"));
+               },
+               {"r.yaml:2", "resolution", "1e+09"}});
+  c.push_back({"map_resolution_20_m",
+               Expect::kError,
+               1,
+               [](const Env& e) {
+                 return e.localize("", "",
+                                   e.map_yaml("r.yaml",
+                                              "resolution: 20\norigin: [-20.9, -26.7, 0]\n"
+                                              "negate: 0\noccupied_thresh: 0.65\n"
+                                              "free_thresh: 0.196\n"));
+               },
+               {"r.yaml", "resolution", "spans fewer than 4 cells"}});
+  c.push_back({"map_negated",
+               Expect::kWarning,
+               0,
+               [](const Env& e) {
+                 return e.localize("", "",
+                                   e.map_yaml("n.yaml",
+                                              "resolution: 0.05\norigin: [-20.9, -26.7, 0]\n"
+                                              "negate: 1\noccupied_thresh: 0.65\n"
+                                              "free_thresh: 0.196\n"));
+               },
+               {"more occupied", "negate"}});
+  c.push_back({"map_of_another_building",
+               Expect::kWarning,
+               0,
+               [](const Env& e) {
+                 return e.localize("--init 5,5,0", "",
+                                   PGMCL_SOURCE_DIR "/data/maps/nav2/depot.yaml");
+               },
+               {"hardly matched the map"}});
+  // Runs in which the filter hardly measured anything: the trajectory is dead reckoning.
+  c.push_back(
+      {"everything_gated",
+       Expect::kWarning,
+       0,
+       [](const Env& e) { return e.localize("--set gating.d_min=1e9 --set gating.theta_min=1e9"); },
+       {"measured only 1 of 120 scans", "119 gated"}});
+  c.push_back({"max_range_shorter_than_every_reading",
+               Expect::kWarning,
+               0,
+               [](const Env& e) { return e.localize("--set likelihood.beam.max_range=0.2"); },
+               {"measured only 0 of 120 scans", "without a valid reading"}});
+  // Laser headers that disagree with their readings: the line is dropped and reported.
+  // Every 10th scan with a header that disagrees: those are dropped and reported.
+  const auto some_bad_headers = [](double fov, double res) {
+    return [fov, res](const Env& e) {
+      const std::vector<std::string> good = as_robotlaser(e.log_lines(), 3.124139);
+      const std::vector<std::string> bad = as_robotlaser(e.log_lines(), fov, res);
+      std::vector<std::string> l;
+      int scans = 0;
+      for (std::size_t i = 0; i < good.size(); ++i) {
+        const bool scan = good[i].rfind("ROBOTLASER1", 0) == 0;
+        l.push_back(scan && ++scans % 10 == 0 ? bad[i] : good[i]);
+      }
+      return e.localize("", e.write("rl.log", join(l)));
+    };
+  };
+  c.push_back({"robotlaser_fov_disagrees",
+               Expect::kWarning,
+               0,
+               some_bad_headers(1.0, 0.017453292519943295),
+               {"dropped 12 malformed line", "field_of_view", "does not describe these readings"}});
+  c.push_back({"robotlaser_resolution_zero",
+               Expect::kWarning,
+               0,
+               some_bad_headers(3.124139, 0.0),
+               {"dropped 12 malformed line", "field_of_view"}});
+  c.push_back({"robotlaser_fov_disagrees_everywhere",
+               Expect::kError,
+               2,
+               [](const Env& e) {
+                 return e.localize("", e.write("rl.log", join(as_robotlaser(e.log_lines(), 1.0))));
+               },
+               {"no laser scan with odometry", "120 malformed line(s)", "field_of_view"}});
+  c.push_back({"robotlaser_fov_disagrees_strict",
+               Expect::kError,
+               1,
+               [](const Env& e) {
+                 return e.localize("--strict",
+                                   e.write("rl.log", join(as_robotlaser(e.log_lines(), 1.0))));
+               },
+               {"rl.log:", "field_of_view"}});
+  c.push_back({"robotlaser_consistent",
+               Expect::kAccepted,
+               0,
+               [](const Env& e) {
+                 return e.localize("",
+                                   e.write("rl.log", join(as_robotlaser(e.log_lines(), 3.124139))));
+               },
+               {},
+               near_end});
+  c.push_back({"rawlaser_fov_disagrees",
+               Expect::kWarning,
+               0,
+               [](const Env& e) {
+                 std::vector<std::string> l = e.log_lines();
+                 l.push_back("RAWLASER1 0 -1.5 1.0 0.5 8 0.01 0 7 1 2 3 4 5 6 7 0 1e9 h 1e9");
+                 return e.localize("", e.write("l.log", join(l)));
+               },
+               {"dropped 1 malformed line", "field_of_view"}});
+  // Truth and relations that match nothing gave "ATE 0.000 m".
+  c.push_back({"truth_from_another_time",
+               Expect::kWarning,
+               0,
+               [](const Env& e) {
+                 return e.localize("--truth " +
+                                   e.write("t.tum", "1 0 0 0 0 0 0 1\n2 1 0 0 0 0 0 1\n"));
+               },
+               {"matched none", "no accuracy figures"},
+               [](const Env& e, const RunResult&) {
+                 EXPECT_EQ(testkit::read_text(e.path("out/metrics.yaml")).find("ate_rmse_m"),
+                           std::string::npos);
+               }});
+  c.push_back({"relations_without_time_offset",
+               Expect::kWarning,
+               0,
+               [](const Env& e) {
+                 return e.localize("--relations " PGMCL_SOURCE_DIR
+                                   "/data/relations/intel.relations.gz");
+               },
+               {"relations matched", "time offset"}});
+  // Seeds out of range, on every command that takes one.
+  for (const auto& [name, args] :
+       {std::pair{"seed_minus_one", "--seed -1"},
+        std::pair{"seed_2_pow_64", "--seed 18446744073709551616"},
+        std::pair{"seed_fraction", "--seed 1.5"}, std::pair{"seed_hex", "--seed 0x10"},
+        std::pair{"seed_empty", "--seed ''"}}) {
+    const std::string a = args;
+    c.push_back({name,
+                 Expect::kError,
+                 2,
+                 [a](const Env& e) { return e.localize(a); },
+                 {"--seed", "a whole number in [0, 18446744073709551615]"}});
+  }
+  c.push_back({"seed_max_accepted",
+               Expect::kAccepted,
+               0,
+               [](const Env& e) { return e.localize("--seed 18446744073709551615"); },
+               {}});
+  c.push_back({"perturb_seed_minus_one",
+               Expect::kError,
+               2,
+               [](const Env& e) {
+                 return "perturb --log " + e.b.log +
+                        " --odom-noise 0.01,0,0.01,0 --seed -1 --out p.log --truth-out p.tum";
+               },
+               {"--seed"}});
+  c.push_back({"perturb_map_seed_too_big",
+               Expect::kError,
+               2,
+               [](const Env& e) {
+                 return "perturb-map --map " + e.b.map +
+                        " --out p.yaml --erase 0.1,1 --seed 99999999999999999999";
+               },
+               {"--seed"}});
+  c.push_back({"set_seed_minus_one",
+               Expect::kError,
+               1,
+               [](const Env& e) { return e.localize("--set seed=-1"); },
+               {"--set seed=-1", "seed"}});
+  // perturb values that wrote absurd logs.
+  for (const auto& [name, args, opt] :
+       {std::tuple{"perturb_noise_1e300", "--odom-noise 1e300,0,0,0", "--odom-noise"},
+        std::tuple{"perturb_glitch_1e300_m",
+                   "--odom-noise 0.01,0,0.01,0 --translation-glitch 1,1e300",
+                   "--translation-glitch"},
+        std::tuple{"perturb_laser_offset_1e300", "--odom-noise 0.01,0,0.01,0 --laser-offset 1e300",
+                   "--laser-offset"},
+        std::tuple{"perturb_scale_bias_1e300", "--odom-noise 0.01,0,0.01,0 --scale-bias 1e300",
+                   "--scale-bias"},
+        std::tuple{"perturb_yaw_drift_1e6", "--odom-noise 0.01,0,0.01,0 --yaw-drift 1e6",
+                   "--yaw-drift"},
+        std::tuple{"perturb_thinning_keeps_one_scan",
+                   "--odom-noise 0.01,0,0.01,0 --min-scan-gap 1e300", "kept 1 of"}}) {
+    const std::string a = args;
+    c.push_back({name,
+                 Expect::kError,
+                 2,
+                 [a](const Env& e) {
+                   return "perturb --log " + e.b.log + " " + a +
+                          " --seed 1 --out p/raw.log --truth-out p/truth.tum";
+                 },
+                 {opt}});
+  }
+  return c;
+}
+
+}  // namespace pgmcl::hostile

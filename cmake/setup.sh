@@ -16,7 +16,7 @@ packages=(
   libroscpp-dev libtf2-ros-dev librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev
   libgeometry-msgs-dev libtf2-msgs-dev libstd-srvs-dev libdiagnostic-msgs-dev
   python3-rosmaster python3-rosbag python3-rospy python3-geometry-msgs
-  python3-sensor-msgs python3-tf2-msgs python3-std-srvs
+  python3-sensor-msgs python3-nav-msgs python3-tf2-msgs python3-std-srvs
 )
 missing=()
 for p in "${packages[@]}"; do

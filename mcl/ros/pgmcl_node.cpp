@@ -16,10 +16,14 @@
 #include <tf2_ros/transform_listener.h>
 
 #include <cmath>
+#include <condition_variable>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
+#include <utility>
 #include <vector>
 
 #include "node_core.hpp"
@@ -75,6 +79,56 @@ std::vector<std::string> private_names(const ros::NodeHandle& pnh) {
   return out;
 }
 
+/// Stores the last pose as private parameters on its own thread. Each value is one
+/// round trip to the master (a new connection to a Python server); in the scan callback a
+/// slow master would hold up localisation, and a bag played fast asks for many of them.
+/// Only the newest pose waiting is stored.
+class PoseParamWriter {
+ public:
+  explicit PoseParamWriter(ros::NodeHandle pnh)
+      : pnh_(std::move(pnh)), thread_([this] { run(); }) {}
+  ~PoseParamWriter() {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_one();
+    thread_.join();
+  }
+  PoseParamWriter(const PoseParamWriter&) = delete;
+  PoseParamWriter& operator=(const PoseParamWriter&) = delete;
+
+  void store(std::vector<std::pair<std::string, double>> values) {
+    if (values.empty()) return;
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      pending_ = std::move(values);
+    }
+    wake_.notify_one();
+  }
+
+ private:
+  void run() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
+      wake_.wait(lock, [this] { return stop_ || !pending_.empty(); });
+      if (stop_) return;
+      const std::vector<std::pair<std::string, double>> values = std::move(pending_);
+      pending_.clear();
+      lock.unlock();
+      for (const auto& [key, value] : values) pnh_.setParam(key, value);
+      lock.lock();
+    }
+  }
+
+  ros::NodeHandle pnh_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::vector<std::pair<std::string, double>> pending_;
+  bool stop_ = false;
+  std::thread thread_;  // last: starts once the members it uses exist
+};
+
 class PgmclNode {
  public:
   PgmclNode(ros::NodeHandle nh, ros::NodeHandle pnh)
@@ -88,7 +142,8 @@ class PgmclNode {
                   ROS_INFO("pgmcl: %s", m.c_str());
               }),
         opt_(core_.options()),
-        listener_(buffer_) {
+        listener_(buffer_),
+        pose_params_(pnh) {
     pose_pub_ = nh_.advertise<geometry_msgs::PoseWithCovarianceStamped>("amcl_pose", 100, true);
     cloud_pub_ = nh_.advertise<geometry_msgs::PoseArray>("particlecloud", 2, true);
     diag_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 2);
@@ -184,8 +239,7 @@ class PgmclNode {
       publish_pose();
       publish_cloud(false);
       publish_diagnostics(msg->header.stamp);
-      for (const auto& [key, value] : core_.pose_to_store(ros::Time::now().toSec()))
-        pnh_.setParam(key, value);
+      pose_params_.store(core_.pose_to_store(ros::Time::now().toSec()));
     }
   }
 
@@ -302,6 +356,7 @@ class PgmclNode {
   ros::Subscriber map_sub_, initial_sub_;
   ros::Publisher pose_pub_, cloud_pub_, diag_pub_;
   ros::ServiceServer global_srv_, nomotion_srv_;
+  PoseParamWriter pose_params_;
   std::map<std::string, Rigid> mounts_;  // base_T_laser per scan frame
   Scan scan_;
   std::vector<Particle> cloud_;

@@ -10,6 +10,8 @@
 4. Drives the node itself (publishing /clock, /tf and the bag's scans): initialpose moves
    the particle cloud and the estimate there; request_nomotion_update makes a scan without
    motion update; global_localization spreads the cloud, and the filter finds the robot.
+5. Restarts the node with the map on the `map` topic instead of ~map_file: it resumes from
+   ~pose_file, and a second map in the same frame keeps the particles.
 Every process is stopped on exit, failure included. Exit 0 when every check passes.
 """
 import argparse
@@ -384,22 +386,78 @@ def run_all(args, work, env, procs, check):
     check(found is not None, f"global_localization: within 0.3 m of the truth from scan "
                              f"{found and found - k - 21} after the call on")
 
-    # ---- Phase 3: a restart without initial_pose_* resumes from ~pose_file.
+    # ---- Phase 3: a restart without initial_pose_* and ~map_file: the map comes on the
+    # `map` topic (use_map_topic), and the node resumes from ~pose_file. A second map in the
+    # same frame keeps the particles.
+    init_pub.unregister()  # its latched pose would reach the new node
     os.killpg(node.pid, signal.SIGINT)
     node.wait(timeout=10)
     stored = dict(l.split(":") for l in open(pose_file) if l.strip() and not l.startswith("#"))
     sx, sy = float(stored["initial_pose_x"]), float(stored["initial_pose_y"])
-    for key in ("x", "y", "a"):
-        rospy.delete_param(f"/pgmcl_node/initial_pose_{key}")
+    for name in ("initial_pose_x", "initial_pose_y", "initial_pose_a", "map_file"):
+        rospy.delete_param(f"/pgmcl_node/{name}")  # command-line values stay on the server
+    from nav_msgs.msg import OccupancyGrid
+    map_pub = rospy.Publisher("/map", OccupancyGrid, queue_size=1, latch=True)
+    map_pub.publish(read_map_message(f"{work}/map.yaml"))
     n_clouds = len(clouds)
-    node = procs.start("pgmcl_node_restart", [a for a in node_args if "_initial_pose" not in a],
-                       env)
-    check(wait_for(lambda: len(clouds) > n_clouds, 30), "restart: the node publishes its start")
+    node = procs.start("pgmcl_node_restart",
+                       [a for a in node_args if "_initial_pose" not in a and "_map_file" not in a]
+                       + ["_use_map_topic:=true"], env)
+    check(wait_for(lambda: len(clouds) > n_clouds, 30),
+          "restart: with the map from the map topic, the node publishes its start")
     mean = clouds[-1].mean(axis=0)
     check(math.hypot(mean[0] - sx, mean[1] - sy) < 0.05,
           f"restart: starts {math.hypot(mean[0] - sx, mean[1] - sy):.3f} m from the pose in "
           f"~pose_file")
+    before = clouds[-1]
+    n_clouds = len(clouds)
+    map_pub.publish(read_map_message(f"{work}/map.yaml"))
+    check(wait_for(lambda: len(clouds) > n_clouds, 10), "a second map: a cloud follows")
+    after = clouds[-1]
+    moved = float(np.max(np.hypot(*(after - before).T))) if len(after) == len(before) else None
+    check(moved is not None and moved < 1e-9,
+          f"a second map in the same frame keeps the particles ({len(after)} of "
+          f"{len(before)}, moved {moved})")
 
+
+def read_map_message(yaml_path):
+    """The map_server YAML written by `pgmcl map` (binary PGM, trinary) as an OccupancyGrid."""
+    import rospy
+    from nav_msgs.msg import OccupancyGrid
+    meta = dict(l.split(":", 1) for l in open(yaml_path) if ":" in l)
+    image = os.path.join(os.path.dirname(yaml_path), meta["image"].strip())
+    data = open(image, "rb").read()
+    fields, pos = [], 0
+    while len(fields) < 4:  # magic, width, height, maxval; '#' comments between
+        while data[pos:pos + 1].isspace():
+            pos += 1
+        if data[pos:pos + 1] == b"#":
+            pos = data.index(b"\n", pos) + 1
+            continue
+        end = pos
+        while not data[end:end + 1].isspace():
+            end += 1
+        fields.append(data[pos:end].decode())
+        pos = end
+    if fields[0] != "P5" or fields[3] != "255":
+        raise RuntimeError(f"{image}: not an 8-bit binary PGM")
+    w, h = int(fields[1]), int(fields[2])
+    pixels = np.frombuffer(data, np.uint8, w * h, pos + 1).reshape(h, w)
+    occupancy = (255.0 - pixels[::-1]) / 255.0  # the image's first row is the map's top
+    cells = np.full((h, w), -1, np.int8)
+    cells[occupancy > float(meta["occupied_thresh"])] = 100
+    cells[occupancy < float(meta["free_thresh"])] = 0
+    origin = [float(v) for v in meta["origin"].strip().strip("[]").split(",")]
+    m = OccupancyGrid()
+    m.header.frame_id = "map"
+    m.header.stamp = rospy.Time.now()
+    m.info.resolution = float(meta["resolution"])
+    m.info.width, m.info.height = w, h
+    m.info.origin.position.x, m.info.origin.position.y = origin[0], origin[1]
+    m.info.origin.orientation.z = math.sin(origin[2] / 2)
+    m.info.origin.orientation.w = math.cos(origin[2] / 2)
+    m.data = cells.ravel().tolist()
+    return m
 
 if __name__ == "__main__":
     sys.exit(main())

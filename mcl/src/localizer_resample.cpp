@@ -57,7 +57,7 @@ void Localizer::resample(UpdateResult& r) {
   const std::size_t n = p_.size();
   const RecoveryConfig& rc = cfg_.filter.recovery;
   // Probabilistic Robotics, Table 8.3, line 13: inject with probability
-  // max(0, 1 - w_fast / w_slow), with w_slow scaled by RecoveryConfig::threshold.
+  // max(0, 1 - w_fast / w_slow).
   const double p_inject = (rc.enabled && have_averages_ && w_slow_ > 0.0)
                               ? std::max(0.0, 1.0 - w_fast_ / w_slow_)
                               : 0.0;

@@ -1,8 +1,8 @@
 #include "pgmcl/mcl/thread_policy.hpp"
 
 #include <algorithm>
-#include <utility>
 #include <cmath>
+#include <utility>
 
 namespace pgmcl {
 

@@ -189,6 +189,19 @@ inline LaserScan cast_scan(const sims::RayCaster& caster, const Pose2& pose, int
   return scan;
 }
 
+/// A robot driving a small loop in one room: `n` poses on a circle of radius 0.45 m around
+/// `centre` (map-local), heading along it, and the 1081-beam scan cast at each (1 cm noise).
+inline void circle_drive(const sims::RayCaster& caster, const Pose2& centre, int n,
+                         std::vector<Pose2>& poses, std::vector<LaserScan>& scans) {
+  for (int k = 0; k < n; ++k) {
+    const double a = 2.0 * std::numbers::pi * k / n;
+    const Pose2 p{centre.x + 0.45 * std::cos(a), centre.y + 0.45 * std::sin(a),
+                  wrap_angle(a + std::numbers::pi / 2)};
+    poses.push_back(p);
+    scans.push_back(cast_scan(caster, p, 1081, 0.01, 100 + static_cast<std::uint64_t>(k)));
+  }
+}
+
 /// n particles around `centre` (map-local): N(0, sigma_xy^2) in x and y, N(0, sigma_theta^2)
 /// in heading: the cloud of a filter that is tracking.
 inline ParticleSet tracking_cloud(const Pose2& centre, std::size_t n, double sigma_xy = 0.25,

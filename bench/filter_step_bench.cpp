@@ -19,7 +19,6 @@
 #include <cstdio>
 #include <map>
 #include <memory>
-#include <numbers>
 #include <string>
 #include <vector>
 
@@ -48,14 +47,7 @@ World& world(int size_m) {
     w.grid = pb::make_office(w.spec);
     w.free_cells = pgmcl::free_cell_indices(w.grid);
     const pgmcl::sims::RayCaster caster(w.grid);
-    const pgmcl::Pose2 c = pb::room_centre(w.spec, 0, 0);
-    for (int k = 0; k < kLoopPoses; ++k) {
-      const double a = 2.0 * std::numbers::pi * k / kLoopPoses;
-      const pgmcl::Pose2 p{c.x + 0.45 * std::cos(a), c.y + 0.45 * std::sin(a),
-                           pgmcl::wrap_angle(a + std::numbers::pi / 2)};
-      w.poses.push_back(p);
-      w.scans.push_back(pb::cast_scan(caster, p, 1081, 0.01, 100 + k));
-    }
+    pb::circle_drive(caster, pb::room_centre(w.spec, 0, 0), kLoopPoses, w.poses, w.scans);
   });
 }
 

@@ -7,7 +7,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash cmake/setup.sh
 jobs=${PGMCL_JOBS:-2}
-cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release -DPGMCL_WITH_PYTHON=ON >/dev/null
+cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release -DPGMCL_WITH_PYTHON=ON \
+  -DPGMCL_WITH_ROS=ON >/dev/null
 cmake --build build/release -j"$jobs" --target pgmcl
 # The Python module (build/release/python/pgmcl) when its packages are there (setup.sh).
 python=$(sed -n 's/^PGMCL_PYTHON_BUILT:INTERNAL=//p' build/release/CMakeCache.txt)
@@ -23,6 +24,18 @@ $pgmcl map --log data/logs/intel-corrected.log.gz --resolution 0.05 --out "$out/
 $pgmcl perturb --log data/logs/intel-corrected.log.gz --odom-noise 0.005,0.0005,0.005,0.0005 \
   --seed 1 --out "$out/intel/raw.log.gz" --truth-out "$out/intel/truth.tum"
 $pgmcl run configs/experiments/intel-demo.yaml --out "$out/intel/tracking"
+
+ros=$(sed -n 's/^PGMCL_ROS_BUILT:INTERNAL=//p' build/release/CMakeCache.txt)
+if [[ $ros == ON ]]; then
+  echo "== The same case as a ROS 1 bag: pgmcl convert, then pgmcl localize --bag (no master)"
+  $pgmcl convert --log "$out/intel/raw.log.gz" --out "$out/intel/raw.bag"
+  $pgmcl localize --map "$out/intel/map.yaml" --bag "$out/intel/raw.bag" \
+    --truth "$out/intel/truth.tum" --set motion.noise.a1=0.01 --set motion.noise.a2=0.001 \
+    --set motion.noise.a3=0.01 --set motion.noise.a4=0.001 --set likelihood.table.kind=isotropic \
+    --set filter.particles=1000 --seed 1 --quiet --out "$out/intel/bag"
+else
+  echo "== (ROS 1 not built: no bag conversion; see the PGMCL_WITH_ROS message of cmake)"
+fi
 
 echo "== Simulated UTM-30LX scene (the paper's sensor, 1081 beams)"
 $pgmcl run configs/experiments/lab.yaml --out "$out/utm-lab"

@@ -11,6 +11,12 @@ packages=(
   python3                                   # the robustness suite (bench/robustness/run.py)
   python3-dev pybind11-dev python3-numpy    # the Python module (mcl/python)
   python3-pytest python3-matplotlib         # its tests and example
+  # ROS 1 (PGMCL_WITH_ROS): pgmcl_node, rosbag I/O, and the end-to-end test's master,
+  # rosbag play and Python client (tests/ros/node_e2e.py)
+  libroscpp-dev libtf2-ros-dev librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev
+  libgeometry-msgs-dev libtf2-msgs-dev libstd-srvs-dev libdiagnostic-msgs-dev
+  python3-rosmaster python3-rosbag python3-rospy python3-geometry-msgs
+  python3-sensor-msgs python3-nav-msgs python3-tf2-msgs python3-std-srvs
 )
 missing=()
 for p in "${packages[@]}"; do

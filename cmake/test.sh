@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
 # The whole test suite, as the README's second command and .ci/run run it:
-#   1. Release build, warnings as errors, OpenMP on; every test (closed loops with 2 threads),
-#      the Python module's pytest suites and example included.
-#   2. Debug build (-O1) under AddressSanitizer + UBSan, OpenMP off (proves the serial build).
+#   1. Release build, warnings as errors, OpenMP on, ROS 1 on; every test (closed loops with
+#      2 threads, pgmcl_node under a real master), the Python module's pytest suites and
+#      example included.
+#   2. Debug build (-O1) under AddressSanitizer + UBSan, OpenMP off (proves the serial build),
+#      ROS 1 off (its edges are tested in stage 1; under ASan the end-to-end test would
+#      replay a whole bag through the node).
 #   3. Install, then build and run a consumer project against find_package(pgmcl), and
 #      import the installed Python module.
 #   4. Bounded libFuzzer runs of each fuzz target (clang).
@@ -21,8 +24,12 @@ stage_done() {  # prints how long the stage that just ended took (CI budget: 20 
 
 echo "== [1/4] Release build + tests"
 cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release -DPGMCL_WERROR=ON \
-  -DPGMCL_WITH_PYTHON=ON >/dev/null
+  -DPGMCL_WITH_PYTHON=ON -DPGMCL_WITH_ROS=ON >/dev/null
 cmake --build build/release -j"$jobs"
+if [ ! -x build/release/pgmcl_node ]; then  # setup.sh installed ROS: it must have been found
+  echo "pgmcl_node was not built (see the PGMCL_WITH_ROS message of the configure step)" >&2
+  exit 1
+fi
 ctest --test-dir build/release --output-on-failure -j"$jobs"
 stage_done "[1/4]"
 
@@ -33,7 +40,7 @@ echo "== [2/4] Debug + ASan/UBSan build + tests (serial, no OpenMP)"
 # into an uninstrumented interpreter; the module is built and tested in stage 1.
 cmake -S . -B build/asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g1 -O1" \
   -DPGMCL_SANITIZE=ON -DPGMCL_USE_OPENMP=OFF -DPGMCL_WERROR=ON -DPGMCL_BUILD_BENCH=OFF \
-  -DPGMCL_WITH_PYTHON=OFF >/dev/null
+  -DPGMCL_WITH_PYTHON=OFF -DPGMCL_WITH_ROS=OFF >/dev/null
 cmake --build build/asan -j"$jobs"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build/asan --output-on-failure -j"$jobs"
@@ -73,7 +80,7 @@ if [ -d tests/fuzz ] && command -v clang++ >/dev/null; then
   CXX=clang++ cmake -S . -B build/fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" -DPGMCL_FUZZ=ON \
     -DPGMCL_BUILD_TESTS=OFF -DPGMCL_BUILD_BENCH=OFF -DPGMCL_USE_OPENMP=OFF \
-    -DPGMCL_WITH_PYTHON=OFF >/dev/null
+    -DPGMCL_WITH_PYTHON=OFF -DPGMCL_WITH_ROS=OFF >/dev/null
   cmake --build build/fuzz -j"$jobs" --target pgmcl_fuzzers
   bash tests/fuzz/run_all.sh build/fuzz "$fuzz_seconds"
 else

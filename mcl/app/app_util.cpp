@@ -20,22 +20,6 @@
 
 namespace pgmcl::app {
 
-std::filesystem::path ensure_directory(const std::string& dir) {
-  std::error_code ec;
-  const std::filesystem::path p(dir);
-  std::filesystem::create_directories(p, ec);
-  if (ec || !std::filesystem::is_directory(p)) {
-    throw io::IoError(dir + ": cannot create output directory" +
-                      (ec ? " (" + ec.message() + ")" : std::string(" (not a directory)")));
-  }
-  return p;
-}
-
-void ensure_parent_directory(const std::string& file) {
-  const std::filesystem::path parent = std::filesystem::path(file).parent_path();
-  if (!parent.empty()) ensure_directory(parent.string());
-}
-
 io::Trajectory load_truth(const std::string& path) {
   const io::FileKind kind = io::detect_file_kind(path);
   const bool log = kind == io::FileKind::kCarmenLog ||

@@ -16,12 +16,6 @@
 
 namespace pgmcl::app {
 
-/// Creates `dir` (and parents) if needed; throws IoError naming it on failure.
-std::filesystem::path ensure_directory(const std::string& dir);
-
-/// Creates the parent folder of a file about to be written; throws IoError on failure.
-void ensure_parent_directory(const std::string& file);
-
 /// Reads a CARMEN log (non-strict unless `strict`): malformed lines are dropped and reported
 /// as a "pgmcl: warning: ..." on stderr listing them (file:line: field); `warnings`, if
 /// given, receives the warning's first line.

@@ -1,4 +1,6 @@
-/// pgmcl localize: run the filter over a log against a map.
+/// pgmcl localize: run the filter over a log (CARMEN, or a ROS 1 bag with --bag) against a
+/// map. A bag is read into the same in-memory log (pgmcl::rosbag_io) and replayed by the
+/// same loop (pgmcl::replay).
 ///
 /// Configuration precedence: struct defaults < --config file < --set overrides (in order)
 /// < --threads / --seed. Start: --init pose, --global, or (neither) the ground truth at the
@@ -12,10 +14,12 @@
 #include <vector>
 
 #include "app_util.hpp"
+#include "bag_input.hpp"
 #include "commands.hpp"
 #include "localize_pipeline.hpp"
 #include "pgmcl/config/config_yaml.hpp"
 #include "pgmcl/io/relations.hpp"
+#include "pgmcl/io/values.hpp"
 #include "pgmcl/map_io/map_io.hpp"
 #include "pgmcl/mcl/config_schema.hpp"
 
@@ -25,6 +29,8 @@ namespace {
 struct LocalizeOptions {
   std::string map;
   std::string log;
+  std::string bag;
+  BagInput bag_input;
   std::string config;
   std::vector<std::string> sets;
   std::string init;
@@ -50,6 +56,9 @@ int run_localize(const LocalizeOptions& o) {
   if (o.seed_opt->count() > 0) job.config.seed = o.seed;
   // --init "" is a mistake, not a request for global localisation.
   if (o.init_opt->count() > 0) job.init = parse_init(o.init);
+  if (o.log.empty() == o.bag.empty())
+    throw io::UsageError("localize: give the scans with --log (CARMEN) or --bag (ROS 1)");
+  const std::string& source = o.bag.empty() ? o.log : o.bag;
 
   // Every output and input is known before any work: an unwritable --out or an output that
   // would overwrite an input fails now, not after the run.
@@ -57,6 +66,7 @@ int run_localize(const LocalizeOptions& o) {
   files.input(o.map, "--map");
   files.input(map_image_path(o.map), "--map's image");
   files.input(o.log, "--log");
+  files.input(o.bag, "--bag");
   files.input(o.config, "--config");
   files.input(o.truth, "--truth");
   files.input(o.relations, "--relations");
@@ -65,11 +75,13 @@ int run_localize(const LocalizeOptions& o) {
   maps::MapLoadReport report;
   const maps::OccupancyGrid map = maps::load_map(o.map, &report);
   for (const auto& w : report.warnings) warn(job, w);
-  const io::CarmenLog log = read_log(o.log, {}, o.strict, &job.warnings);
+  const io::CarmenLog log =
+      o.bag.empty() ? read_log(o.log, {}, o.strict, &job.warnings)
+                    : read_bag_input(o.bag, o.bag_input, "localize --bag", &job.warnings);
 
   job.map = &map;
   job.log = &log;
-  job.log_name = o.log;
+  job.log_name = source;
   if (!o.truth.empty()) job.truth = load_truth(o.truth);
   if (!o.relations.empty()) {
     job.relations = io::read_relations(o.relations);
@@ -80,7 +92,7 @@ int run_localize(const LocalizeOptions& o) {
   }
   check_job(job, o.map, "--init");
   job.map_name = o.map;
-  job.title = run_title(o.out, o.log);
+  job.title = run_title(o.out, source);
   job.quiet = o.quiet;
   const io::RunMetrics m = run_localization(job, outputs, files);
   std::printf("%s\n", summary_line(m, o.out, job.config).c_str());
@@ -96,10 +108,13 @@ Command add_localize_command(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile)
       ->check(map_file());
-  sub->add_option("--log", o->log, "CARMEN log (.log, .clf, optionally .gz)")
-      ->required()
-      ->check(CLI::ExistingFile)
-      ->check(log_file());
+  auto* log = sub->add_option("--log", o->log, "CARMEN log (.log, .clf, optionally .gz)")
+                  ->check(CLI::ExistingFile)
+                  ->check(log_file());
+  auto* bag = sub->add_option("--bag", o->bag, "ROS 1 bag (instead of --log)")
+                  ->check(CLI::ExistingFile)
+                  ->excludes(log);
+  add_bag_input_options(*sub, o->bag_input, bag);
   sub->add_option("--config", o->config, "Filter configuration YAML")
       ->check(CLI::ExistingFile)
       ->check(filter_file());

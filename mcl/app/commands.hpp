@@ -23,5 +23,6 @@ Command add_eval_command(CLI::App& app);
 Command add_kernel_command(CLI::App& app);
 Command add_calibrate_command(CLI::App& app);
 Command add_config_command(CLI::App& app);
+Command add_convert_command(CLI::App& app);
 
 }  // namespace pgmcl::app

@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
       pgmcl::app::add_perturb_command(app),   pgmcl::app::add_perturb_map_command(app),
       pgmcl::app::add_eval_command(app),      pgmcl::app::add_kernel_command(app),
       pgmcl::app::add_calibrate_command(app), pgmcl::app::add_config_command(app),
+      pgmcl::app::add_convert_command(app),
   };
   return pgmcl::app::run_reporting_errors(
       [&]() -> int {

@@ -1,7 +1,8 @@
 #pragma once
 // Internal: deterministic parallel sums. The range is cut into fixed-size blocks, each
 // block is summed serially into its own partial, and the partials are added in block
-// order. The blocking does not depend on the thread count, so threads = 1 (the serial
+// order. The blocking does not depend on the thread count or on which thread sums a block
+// (blocks are handed out dynamically, see parallel_blocks.hpp), so threads = 1 (the serial
 // reference) and any OpenMP team give bit-identical doubles.
 
 #include <array>
@@ -33,7 +34,7 @@ template <std::size_t K, class Body>
   if (threads != 1 && blocks > 1) {
     const int team = threads > 0 ? threads : omp_get_max_threads();
     const auto nb = static_cast<std::ptrdiff_t>(blocks);
-#pragma omp parallel for schedule(static) num_threads(team)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(team)
     for (std::ptrdiff_t b = 0; b < nb; ++b) run(static_cast<std::size_t>(b));
   } else {
     for (std::size_t b = 0; b < blocks; ++b) run(b);

@@ -22,8 +22,7 @@ Eigen::Matrix3d to_global(const Eigen::Matrix3d& local, double origin_theta) {
 }  // namespace
 
 void Localizer::compute_estimate(UpdateResult& r) {
-  const int threads = cfg_.threads;
-  const PoseEstimate all = estimate_pose(p_.x, p_.y, p_.theta, p_.w, threads);
+  const PoseEstimate all = estimate_pose(p_.x, p_.y, p_.theta, p_.w, threads_);
   r.mean = origin_.compose(all.mean);
   r.mean_covariance = to_global(all.covariance, origin_.theta);
 

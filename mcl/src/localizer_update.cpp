@@ -59,7 +59,9 @@ UpdateResult Localizer::update(const Pose2& odometry_pose, const LaserScan& scan
     bad_scan("stamp " + std::to_string(stamp) + " s is earlier than the previous update's " +
              std::to_string(last_stamp_) + " s (time_backwards = kThrow)");
 
+  threads_ = cfg_.adaptive_threads ? thread_policy_.next() : cfg_.threads;
   UpdateResult r = last_;  // estimate fields carry over on skipped updates
+  r.threads = threads_;
   r.skipped = SkipReason::kNone;
   r.motion_applied = r.resampled = false;
   r.injected = 0;
@@ -123,6 +125,7 @@ UpdateResult Localizer::update(const Pose2& odometry_pose, const LaserScan& scan
   if (r.alternative_evidence > 0.0) r.converged = false;
   r.timings.estimate_ms = ms_since(te);
 
+  const std::size_t scored = p_.size();
   if (measured) {
     const auto tr = Clock::now();
     resample(r);
@@ -131,6 +134,9 @@ UpdateResult Localizer::update(const Pose2& odometry_pose, const LaserScan& scan
   r.particles = p_.size();
   anchor_ = r.estimate;
   r.timings.total_ms = ms_since(t0);
+  if (measured)
+    thread_policy_.record(threads_, r.timings.total_ms,
+                          static_cast<double>(scored) * static_cast<double>(r.beams_used));
   last_ = r;
   return r;
 }
@@ -144,7 +150,7 @@ void Localizer::motion_update(const Pose2& odom_prev, const Pose2& odom_now) {
   float* th = p_.theta.data();
   const MotionConfig& mc = cfg_.motion;
   const std::uint64_t seed = cfg_.seed;
-  detail::for_each_block(detail::block_count(n), cfg_.threads, [&](std::size_t b) {
+  detail::for_each_block(detail::block_count(n), threads_, [&](std::size_t b) {
     Rng rng = Rng::for_block(seed, step, b);
     const std::size_t hi = std::min(n, (b + 1) * detail::kParticleBlock);
     for (std::size_t i = b * detail::kParticleBlock; i < hi; ++i) {
@@ -178,10 +184,10 @@ bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, Up
   }
   const std::size_t n = p_.size();
   ws_.beam_sums.resize(n);
-  if (cfg_.threads == 1)
+  if (threads_ == 1)
     model_.score_serial(p_.x, p_.y, p_.theta, ws_.beam_sums);
   else
-    model_.score_parallel(p_.x, p_.y, p_.theta, ws_.beam_sums, cfg_.threads);
+    model_.score_parallel(p_.x, p_.y, p_.theta, ws_.beam_sums, threads_);
 
   // Per-particle log-likelihood of the scan (sum over beams).
   const auto m = static_cast<double>(ws_.selected_beams.size());

@@ -21,13 +21,16 @@ inline constexpr std::size_t kParticleBlock = 256;
 
 /// threads == 1: plain serial loop (the reference); otherwise an OpenMP loop with a
 /// num_threads clause (0 = OpenMP's default), never omp_set_num_threads (global state).
+/// Blocks are handed out one at a time (dynamic schedule): a thread whose core is shared
+/// with another process takes fewer of them instead of holding the team up. Which thread
+/// runs a block does not change its result.
 template <class Fn>
 void for_each_block(std::size_t blocks, int threads, Fn&& fn) {
 #ifdef _OPENMP
   if (threads != 1) {
     const int nt = threads > 0 ? threads : omp_get_max_threads();
     const auto nb = static_cast<std::ptrdiff_t>(blocks);
-#pragma omp parallel for schedule(static) num_threads(nt)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
     for (std::ptrdiff_t b = 0; b < nb; ++b) fn(static_cast<std::size_t>(b));
     return;
   }

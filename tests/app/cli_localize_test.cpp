@@ -18,15 +18,7 @@ using cli_test::run_pgmcl;
 using cli_test::RunResult;
 using cli_test::TempDir;
 
-/// room.yaml (mapped from the exact log), raw.log (noisy odometry), truth.tum.
-void prepare(const TempDir& dir) {
-  ASSERT_EQ(cli_test::map_room(dir, 60, "room.yaml").code, 0);
-  ASSERT_EQ(run_pgmcl("perturb --log corrected.log --odom-noise 0.01,0.001,0.01,0.001 --seed 4 "
-                      "--out raw.log --truth-out truth.tum",
-                      dir)
-                .code,
-            0);
-}
+using cli_test::prepare_localize_case;
 
 constexpr const char* kSmall =
     " --set filter.particles=300 --set filter.global_particles=3000 --set "
@@ -34,7 +26,7 @@ constexpr const char* kSmall =
 
 TEST(CliLocalize, TracksTheSyntheticRoomAndWritesEveryOutput) {
   TempDir dir("cli_localize_room");
-  prepare(dir);
+  prepare_localize_case(dir);
   const RunResult r = run_pgmcl(
       std::string("localize --map room.yaml --log raw.log --truth truth.tum --out out --quiet "
                   "--seed 3") +
@@ -85,7 +77,7 @@ TEST(CliLocalize, TracksTheSyntheticRoomAndWritesEveryOutput) {
 
 TEST(CliLocalize, MoreThreadsThanCoresWarns) {
   TempDir dir("cli_localize_threads");
-  prepare(dir);
+  prepare_localize_case(dir);
   const std::string over = std::to_string(std::thread::hardware_concurrency() + 1);
   const RunResult r = run_pgmcl(
       "localize --map room.yaml --log raw.log --out out --quiet --threads " + over + kSmall, dir);
@@ -101,7 +93,7 @@ TEST(CliLocalize, MoreThreadsThanCoresWarns) {
 
 TEST(CliLocalize, ALogWithoutOdometryIsBadInputNotABadCommandLine) {
   TempDir dir("cli_localize_no_odom");
-  prepare(dir);
+  prepare_localize_case(dir);
   // RAWLASER1 scans carry no pose, and there is no ODOM message: nothing to localise.
   io::CarmenLog log = io::read_carmen(dir.file("raw.log"));
   log.odometry.clear();
@@ -117,7 +109,7 @@ TEST(CliLocalize, ALogWithoutOdometryIsBadInputNotABadCommandLine) {
 
 TEST(CliLocalize, GlobalLocalisationFindsTheRobot) {
   TempDir dir("cli_localize_global");
-  prepare(dir);
+  prepare_localize_case(dir);
   const RunResult r = run_pgmcl(
       std::string("localize --map room.yaml --log raw.log --truth truth.tum --global --out out "
                   "--quiet") +
@@ -143,7 +135,7 @@ TEST(CliLocalize, GlobalLocalisationFindsTheRobot) {
 
 TEST(CliLocalize, BadConfigAndOptionsAreReportedPrecisely) {
   TempDir dir("cli_localize_errors");
-  prepare(dir);
+  prepare_localize_case(dir);
   cli_test::write_text(dir.file("cfg.yaml"), "filter:\n  particels: 100\n");
   RunResult r = run_pgmcl("localize --map room.yaml --log raw.log --config cfg.yaml", dir);
   EXPECT_EQ(r.code, 1);

@@ -101,4 +101,15 @@ inline RunResult map_room(const TempDir& dir, int poses, const std::string& map_
   return run_pgmcl("map --log corrected.log --max-range 81.9 --out " + map_path, dir);
 }
 
+/// The localisation case of the end-to-end tests in `dir`: room.yaml (mapped from the exact
+/// log of map_room(dir, 60)), raw.log (noisy odometry, seed 4) and truth.tum.
+inline void prepare_localize_case(const TempDir& dir) {
+  ASSERT_EQ(map_room(dir, 60, "room.yaml").code, 0);
+  ASSERT_EQ(run_pgmcl("perturb --log corrected.log --odom-noise 0.01,0.001,0.01,0.001 --seed 4 "
+                      "--out raw.log --truth-out truth.tum",
+                      dir)
+                .code,
+            0);
+}
+
 }  // namespace pgmcl::cli_test

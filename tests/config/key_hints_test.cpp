@@ -40,7 +40,7 @@ TEST(KeyHints, UnknownKeysListTheKeysAtTheirLevel) {
               "filter: global_particles, kld, particles, recovery, resample_threshold");
   }
   EXPECT_NE(set_error("filtr.particles")
-                .find("; keys at the top: estimate, filter, gating, "
+                .find("; keys at the top: adaptive_threads, estimate, filter, gating, "
                       "hypotheses, likelihood, motion, seed, threads, "
                       "time_backwards"),
             std::string::npos);

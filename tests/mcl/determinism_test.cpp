@@ -57,6 +57,7 @@ INSTANTIATE_TEST_SUITE_P(AllKinds, SerialVsParallel,
 LocalizerConfig tracking_config(int threads) {
   LocalizerConfig cfg;
   cfg.threads = threads;
+  cfg.adaptive_threads = false;  // the team on every update, whatever the machine's load
   cfg.seed = 1234;
   cfg.filter.particles = 1500;  // several blocks, not a multiple of 256
   cfg.gating.d_min = 0.05;
@@ -77,15 +78,27 @@ TEST(Determinism, SameSeedSameTrajectoryForOneAndTwoThreads) {
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
   cov.diagonal() << 0.01, 0.01, 0.01;
 
+  // A fixed team of two, and an adaptive one that switches between two threads and one as
+  // the machine's load says (ThreadPolicy): both give the serial reference's bits.
+  LocalizerConfig adaptive = tracking_config(2);
+  adaptive.adaptive_threads = true;
   Localizer a(world.grid, tracking_config(1)), b(world.grid, tracking_config(2));
+  Localizer c(world.grid, adaptive);
   a.set_pose(truth[0], cov);
   b.set_pose(truth[0], cov);
-  Rng noise_a(9), noise_b(9);
-  std::size_t resampled = 0;
+  c.set_pose(truth[0], cov);
+  Rng noise_a(9), noise_b(9), noise_c(9);
+  std::size_t resampled = 0, team = 0;
   for (std::size_t k = 0; k < 60; ++k) {
     const double t = 0.1 * static_cast<double>(k);
     const UpdateResult ra = a.update(odom[k], world.scan(truth[k], spec, &noise_a), t);
     const UpdateResult rb = b.update(odom[k], world.scan(truth[k], spec, &noise_b), t);
+    const UpdateResult rc = c.update(odom[k], world.scan(truth[k], spec, &noise_c), t);
+    ASSERT_EQ(rb.threads, 2);
+    ASSERT_TRUE(rc.threads == 1 || rc.threads == 2);
+    team += rc.threads == 2 ? 1 : 0;
+    ASSERT_EQ(ra.estimate.x, rc.estimate.x) << "step " << k;
+    ASSERT_EQ(ra.n_eff, rc.n_eff) << "step " << k;
     ASSERT_EQ(ra.estimate.x, rb.estimate.x) << "step " << k;
     ASSERT_EQ(ra.estimate.y, rb.estimate.y) << "step " << k;
     ASSERT_EQ(ra.estimate.theta, rb.estimate.theta) << "step " << k;
@@ -100,6 +113,8 @@ TEST(Determinism, SameSeedSameTrajectoryForOneAndTwoThreads) {
   ASSERT_EQ(pa.weight.size(), pb.weight.size());
   EXPECT_EQ(0, std::memcmp(pa.weight.data(), pb.weight.data(), pa.weight.size() * sizeof(double)));
   EXPECT_GT(resampled, 0u);  // the comparison covered resampling too
+  EXPECT_TRUE(same_bits(pa.x, c.particles().x));
+  EXPECT_GT(team, 0u);
 }
 
 // A different seed gives a different particle set (the seed is really used).

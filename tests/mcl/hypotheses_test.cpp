@@ -54,16 +54,24 @@ Recovery recovery_of(const std::vector<double>& err_xy, std::size_t at) {
   return r;
 }
 
-Recovery run_glitched(const Glitched& g, bool hypotheses, std::uint64_t seed) {
-  const test::World world = test::make_room(0.05);
+// One thread, `seed`, and a tight start on the loop's first pose.
+LocalizerConfig loop_config(std::uint64_t seed, bool hypotheses) {
   LocalizerConfig cfg;
   cfg.threads = 1;
   cfg.seed = seed;
   cfg.hypotheses.enabled = hypotheses;
-  Localizer loc(world.grid, cfg);
+  return cfg;
+}
+void start_tight(Localizer& loc, const Pose2& start) {
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
   cov.diagonal() << 0.01, 0.01, 0.003;
-  loc.set_pose(g.truth[0], cov);
+  loc.set_pose(start, cov);
+}
+
+Recovery run_glitched(const Glitched& g, bool hypotheses, std::uint64_t seed) {
+  const test::World world = test::make_room(0.05);
+  Localizer loc(world.grid, loop_config(seed, hypotheses));
+  start_tight(loc, g.truth[0]);
   test::ScanSpec spec;
   spec.noise_sigma = 0.01;
   const test::LoopErrors e = test::run_loop(loc, world, g.truth, g.odom, spec,
@@ -75,13 +83,8 @@ Recovery run_glitched(const Glitched& g, bool hypotheses, std::uint64_t seed) {
 // around the robot wherever it is, and hide most of the walls.
 Recovery run_crowded(const Glitched& g, std::uint64_t seed) {
   const test::World map_world = test::make_room(0.05);
-  LocalizerConfig cfg;
-  cfg.threads = 1;
-  cfg.seed = seed;
-  Localizer loc(map_world.grid, cfg);
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  cov.diagonal() << 0.01, 0.01, 0.003;
-  loc.set_pose(g.truth[0], cov);
+  Localizer loc(map_world.grid, loop_config(seed, true));
+  start_tight(loc, g.truth[0]);
   test::ScanSpec spec;
   spec.noise_sigma = 0.01;
   Rng noise(seed + 7), crowd(seed + 11);

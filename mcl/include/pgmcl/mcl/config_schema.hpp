@@ -325,6 +325,8 @@ void describe_config(V& v, Config& c) {
            c.time_backwards, kTimePolicies);
   v.integer(Field{"threads", "", "OpenMP threads; 0 = OpenMP's default"}, c.threads,
             IntRange{0, kMaxThreads});
+  v.flag(Field{"adaptive_threads", "", "one thread while the team is slower (a busy core)"},
+         c.adaptive_threads);
   v.integer(Field{"seed", "", "every random stream derives from it"}, c.seed, IntRange{});
 }
 

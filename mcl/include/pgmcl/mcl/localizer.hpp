@@ -25,6 +25,7 @@
 #include "pgmcl/mcl/localizer_config.hpp"
 #include "pgmcl/mcl/measurement_model.hpp"
 #include "pgmcl/mcl/particles.hpp"
+#include "pgmcl/mcl/thread_policy.hpp"
 #include "pgmcl/mcl/update_result.hpp"
 
 namespace pgmcl {
@@ -72,6 +73,15 @@ class Localizer {
   /// Re-initialises uniformly over the free cells (uniform heading) with
   /// filter.global_particles particles. Forces the next measurement update.
   void global_localize();
+  /// Swaps in a new map (its likelihood field and free cells, as for the second constructor)
+  /// and keeps the particles: each keeps its global pose, weight and probation, re-expressed
+  /// in the new grid's map-local frame. For a map of the same global frame (an edited or
+  /// re-published map), not for one whose frame moved. Competing hypotheses found on the
+  /// old map are dropped; the next update() measures against the new one. Throws
+  /// std::invalid_argument (state unchanged) for empty or out-of-range free cells or a null
+  /// field.
+  void replace_map(std::shared_ptr<const maps::LikelihoodField> field,
+                   std::vector<std::uint32_t> free_cells);
 
   [[nodiscard]] ParticlesView particles() const noexcept;
   [[nodiscard]] const LocalizerConfig& config() const noexcept { return cfg_; }
@@ -143,7 +153,9 @@ class Localizer {
   bool have_stamp_ = false;
   double last_stamp_ = 0.0;
   bool force_ = true;
-  std::uint64_t step_ = 0;  ///< counter keying every random stream
+  std::uint64_t step_ = 0;      ///< counter keying every random stream
+  ThreadPolicy thread_policy_;  ///< team or one thread, by the last updates' cost
+  int threads_ = 1;             ///< what this update's parallel loops use
   bool have_averages_ = false;
   double w_slow_ = 0.0, w_fast_ = 0.0;
   UpdateResult last_{};

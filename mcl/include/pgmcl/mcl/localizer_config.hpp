@@ -174,7 +174,11 @@ struct LocalizerConfig {
   EstimateConfig estimate{};
   HypothesesConfig hypotheses{};
   TimeBackwardsPolicy time_backwards = TimeBackwardsPolicy::kThrow;
-  int threads = 1;          ///< OpenMP threads for motion + measurement; 0 = OpenMP default
+  int threads = 1;  ///< OpenMP threads for motion + measurement; 0 = OpenMP default
+  /// With a team (threads != 1): run an update on one thread while the last updates found
+  /// the team slower, e.g. when another process keeps a core busy (ThreadPolicy). The
+  /// results are the same bits either way.
+  bool adaptive_threads = true;
   std::uint64_t seed = 42;  ///< every random stream derives from this (random.hpp)
 
   /// Throws InvalidConfigField (a std::invalid_argument) for the first invalid field.

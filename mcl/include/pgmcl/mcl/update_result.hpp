@@ -72,6 +72,9 @@ struct UpdateResult {
   bool searched = false;   ///< a scan-to-map search ran this update (global or rescue)
 
   UpdateTimings timings{};
+  /// Threads this update's parallel loops ran with: LocalizerConfig::threads, or 1 while
+  /// recent updates found the team slower (ThreadPolicy). Results do not depend on it.
+  int threads = 1;
 
   /// The weights were updated from this scan: nothing skipped it and it had beams to score
   /// (false for the state after construction, set_pose() or global_localize()).

@@ -1,0 +1,56 @@
+#pragma once
+/// How many threads the next update runs with, when LocalizerConfig::threads asks for a
+/// team and adaptive_threads is on: the team, or one thread when recent updates say the
+/// team does not help.
+///
+/// Why: on a robot the rest of the stack uses the cores too. When another process keeps a
+/// core busy, a team of two is slower than one thread (libgomp's idle threads spin between
+/// the update's parallel loops and take the core the serial parts need; the thread that
+/// shares a core falls behind), and the wait policy that would avoid it can only be set
+/// through the environment. So the engine measures: each measured update's wall time per
+/// unit of work (particles x beams) is recorded for the thread count it ran with; the
+/// cheaper count by the median of its last few updates is used, and the other one is tried
+/// every kProbeEvery-th update (again at once while those tries keep winning), so a change
+/// of load is followed within a few updates. The results do not depend on it: the blocks
+/// and random streams are fixed, so any thread count gives the same bits.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+namespace pgmcl {
+
+class ThreadPolicy {
+ public:
+  static constexpr std::size_t kWindow = 5;         ///< samples per count (median)
+  static constexpr std::uint64_t kProbeEvery = 64;  ///< updates between tries of the other count
+  static constexpr std::uint64_t kWarmup = 2;       ///< updates before the first try
+
+  /// `requested`: LocalizerConfig::threads (1 = always serial; 0 = OpenMP's default team).
+  explicit ThreadPolicy(int requested = 1) noexcept : team_(requested) {}
+
+  /// Threads for the next update: `requested` or 1.
+  [[nodiscard]] int next() noexcept;
+  /// The update that used `threads` (a value next() returned) took `ms` for `work` units
+  /// (particles x beams scored); ignored unless both are positive and finite.
+  void record(int threads, double ms, double work) noexcept;
+
+  /// The count in use when no try is due (`requested` until the serial one proved faster).
+  [[nodiscard]] int preferred() const noexcept { return team_preferred_ ? team_ : 1; }
+
+ private:
+  struct Samples {
+    std::array<double, kWindow> v{};
+    std::size_t n = 0, next = 0;
+    void add(double x) noexcept;
+    [[nodiscard]] double median() const noexcept;
+  };
+
+  int team_;
+  bool team_preferred_ = true;
+  bool retry_ = false;  // the last try beat the preferred count: try again next update
+  std::uint64_t updates_ = 0;
+  Samples serial_, team_samples_;
+};
+
+}  // namespace pgmcl

@@ -1,0 +1,84 @@
+// ThreadPolicy: the team or one thread, from recorded costs; no clock involved.
+#include "pgmcl/mcl/thread_policy.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace pgmcl {
+namespace {
+
+/// Runs `n` updates whose cost per unit of work is `team_cost` with the team and
+/// `serial_cost` with one thread; returns the counts next() chose.
+std::vector<int> drive(ThreadPolicy& p, int n, double team_cost, double serial_cost) {
+  std::vector<int> used;
+  for (int i = 0; i < n; ++i) {
+    const int t = p.next();
+    used.push_back(t);
+    p.record(t, (t == 1 ? serial_cost : team_cost) * 1000.0, 1000.0);
+  }
+  return used;
+}
+
+int count(const std::vector<int>& v, int x) {
+  int c = 0;
+  for (int y : v) c += y == x;
+  return c;
+}
+
+TEST(ThreadPolicy, SerialRequestIsAlwaysSerial) {
+  ThreadPolicy p(1);
+  EXPECT_EQ(count(drive(p, 200, 0.5, 1.0), 1), 200);
+}
+
+TEST(ThreadPolicy, KeepsTheTeamWhenItIsFasterAndTriesSeriallyRarely) {
+  ThreadPolicy p(2);
+  const std::vector<int> used = drive(p, 640, 0.6, 1.0);
+  EXPECT_EQ(used[0], 2);
+  EXPECT_EQ(used[1], 2);
+  EXPECT_EQ(used[2], 1);  // the first try, after the warm-up
+  EXPECT_EQ(p.preferred(), 2);
+  // One try per kProbeEvery updates (plus the first).
+  EXPECT_LE(count(used, 1), 640 / static_cast<int>(ThreadPolicy::kProbeEvery) + 1);
+}
+
+TEST(ThreadPolicy, FollowsTheLoadBothWays) {
+  ThreadPolicy p(2);
+  (void)drive(p, 100, 0.6, 1.0);
+  ASSERT_EQ(p.preferred(), 2);
+  // A busy core: the team now costs twice the serial time; within a few updates the
+  // median of the team's samples passes the serial one.
+  const std::vector<int> busy = drive(p, 200, 2.0, 1.05);
+  EXPECT_EQ(p.preferred(), 1);
+  int team_after_switch = 0;
+  for (std::size_t i = 10; i < busy.size(); ++i) team_after_switch += busy[i] == 2;
+  EXPECT_LE(team_after_switch, 4);  // only the periodic tries
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(busy[static_cast<std::size_t>(i)], 2);
+  // The load goes: the next try wins, is repeated at once, and the team is back.
+  const std::vector<int> quiet = drive(p, 80, 0.6, 1.0);
+  EXPECT_EQ(p.preferred(), 2);
+  int first_try = -1;
+  for (std::size_t i = 0; i < quiet.size(); ++i)
+    if (quiet[i] == 2) {
+      first_try = static_cast<int>(i);
+      break;
+    }
+  ASSERT_GE(first_try, 0);
+  // From the first winning try on, the team is used on every update.
+  for (std::size_t i = static_cast<std::size_t>(first_try); i < quiet.size(); ++i)
+    EXPECT_EQ(quiet[i], 2) << "update " << i;
+}
+
+TEST(ThreadPolicy, OneSlowTryDoesNotSwitch) {
+  ThreadPolicy p(2);
+  (void)drive(p, 100, 0.6, 1.0);
+  // One team update hit by a hiccup costs 5x: the median of five ignores it.
+  p.record(2, 5000.0, 1000.0);
+  EXPECT_EQ(p.preferred(), 2);
+  p.record(2, 0.0, 1000.0);  // not a measurement: ignored
+  p.record(2, 1.0, 0.0);
+  EXPECT_EQ(p.preferred(), 2);
+}
+
+}  // namespace
+}  // namespace pgmcl

@@ -77,9 +77,8 @@ void HypothesisTracker::track(const Pose2& prediction, const Pose2& delta, std::
   // Readings that suddenly cross walls at the prediction show a glitch even where clutter
   // hides it in the fit.
   const std::size_t blocked = blocked_beams(ref.pose);
-  const bool crossed =
-      have_fit_mean_ && static_cast<double>(blocked) >
-                            blocked_mean_ + static_cast<double>(beams_used_ / kBlockedMargin);
+  const bool crossed = have_fit_mean_ && static_cast<double>(blocked) >
+                                             blocked_mean_ + static_cast<double>(blocked_margin());
   const bool lost = have_fit_mean_ && fit < cfg_.rescue_fit_ratio * fit_mean_;
   lost_updates_ = lost ? lost_updates_ + 1 : 0;
   if (lost_updates_ == 1) abrupt_loss_ = fell || crossed;
@@ -192,12 +191,13 @@ void HypothesisTracker::prune(const Scored& ref) {
   competitors_ = std::move(kept);
 }
 
-bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, double fit, double step,
-                                   bool lost, const Crossings& free) const {
+bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, double fit,
+                                   std::size_t blocked, double step, bool lost) const {
   // Every winner outweighs the prediction, gained on this scan, and is not contradicted by
   // the free space its readings crossed.
   if (c.evidence < cfg_.switch_evidence || !(c.last > 0.0)) return false;
-  if (free.candidate > free.reference + free.margin) return false;
+  const std::size_t crossing = blocked_beams(c.pose), margin = blocked_margin();
+  if (crossing > blocked + margin) return false;
   // A place the global search proposed (as likely a priori as the one the filter settled
   // on) needs only to stay ahead over rival_view metres of new view.
   if (c.origin == Competitor::Origin::kGlobal) return c.view >= cfg_.rival_view && c.age >= 1;
@@ -207,9 +207,8 @@ bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, doubl
   // Confirmed, within a glitch's reach: its readings cross almost no wall, clearly fewer
   // than the prediction's, and more of them fit. Where clutter keeps every fit low, that
   // is what tells a glitch apart.
-  const bool confirmed = cfg_.free_space && nearby && free.candidate <= free.margin &&
-                         free.candidate + free.margin <= free.reference &&
-                         c.fit >= fit + kConfirmGain;
+  const bool confirmed = cfg_.free_space && nearby && crossing <= margin &&
+                         crossing + margin <= blocked && c.fit >= fit + kConfirmGain;
   const bool abrupt = c.abrupt || confirmed;
   // The others must explain the scan as the map usually does here: with some slack when
   // they were found as the prediction's fit fell at once, fully when it faded (clutter,
@@ -227,7 +226,7 @@ bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, doubl
     // Or the filter settled on a wrong place that fits almost as well (a building's
     // near-symmetry): the other place stayed ahead over a long stretch of new view, fits
     // as the map usually does, and its readings cross no more walls.
-    return cfg_.free_space && free.candidate <= free.reference && c.view >= kSettledView &&
+    return cfg_.free_space && crossing <= blocked && c.view >= kSettledView &&
            c.fit >= kNormalFit * usual && c.fit > fit;
   }
   if (!abrupt && !(nearby && turned >= kFadedHeading)) return false;
@@ -237,17 +236,10 @@ bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, doubl
 void HypothesisTracker::maybe_switch(const Scored& ref, double fit, std::size_t blocked,
                                      double step, bool lost, std::size_t particles,
                                      HypothesisStep& out) {
-  // competitors_ is sorted by evidence: the first that may switch is the strongest. Rays are
-  // cast only for competitors with enough evidence to win.
-  Crossings free;
-  free.margin = beams_used_ / kBlockedMargin;
-  free.reference = blocked;
-  const auto winner =
-      std::find_if(competitors_.begin(), competitors_.end(), [&](const Competitor& c) {
-        if (c.evidence < cfg_.switch_evidence || !(c.last > 0.0)) return false;
-        free.candidate = blocked_beams(c.pose);
-        return may_switch(c, ref, fit, step, lost, free);
-      });
+  // competitors_ is sorted by evidence: the first that may switch is the strongest.
+  const auto winner = std::find_if(
+      competitors_.begin(), competitors_.end(),
+      [&](const Competitor& c) { return may_switch(c, ref, fit, blocked, step, lost); });
   if (winner == competitors_.end()) return;
   out.seed = {{winner->pose},
               static_cast<std::size_t>(

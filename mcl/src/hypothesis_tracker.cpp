@@ -136,8 +136,7 @@ bool HypothesisTracker::contradicted(const Pose2& pose, std::size_t ref_blocked)
   // At a right pose a reading crosses a wall only where the map is wrong or the ray grazes
   // a corner; at a wrong one that fits by chance (clutter, people, furniture missing from
   // the map), many do.
-  const std::size_t beams = beams_ == nullptr ? 0 : beams_->size();
-  return blocked_beams(pose) > ref_blocked + beams / kBlockedMargin;
+  return blocked_beams(pose) > ref_blocked + blocked_margin();
 }
 
 HypothesisTracker::Scored HypothesisTracker::climb(const Pose2& start) const {

@@ -103,13 +103,12 @@ class HypothesisTracker {
   /// `blocked`: blocked_beams() at the prediction.
   void maybe_switch(const Scored& ref, double fit, std::size_t blocked, double step, bool lost,
                     std::size_t particles, HypothesisStep& out);
-  /// Beams whose rays cross walls (blocked_beams()) at a competitor and at the prediction,
-  /// and the difference that counts.
-  struct Crossings {
-    std::size_t candidate = 0, reference = 0, margin = 0;
-  };
-  [[nodiscard]] bool may_switch(const Competitor& c, const Scored& ref, double fit, double step,
-                                bool lost, const Crossings& free) const;
+  /// `blocked`: blocked_beams() at the prediction; the competitor's rays are cast here, once
+  /// it has the evidence to win.
+  [[nodiscard]] bool may_switch(const Competitor& c, const Scored& ref, double fit,
+                                std::size_t blocked, double step, bool lost) const;
+  /// How many more blocked beams than a reference count as evidence (kBlockedMargin).
+  [[nodiscard]] std::size_t blocked_margin() const noexcept { return beams_used_ / kBlockedMargin; }
   void add(const Scored& c, const Scored& ref, Competitor::Origin origin, bool abrupt);
 
   /// The scan contradicts a robot at `pose`: a tenth of the beams more than `ref_blocked`

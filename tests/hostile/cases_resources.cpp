@@ -82,6 +82,14 @@ std::vector<Case> resource_cases() {
        1,
        [](const Env& e) { return e.localize("--set filter.kld.max_particles=10000000000"); },
        {"filter.kld.max_particles", "GB"}});
+  // Found by the config fuzzer: a scan of this many readings is 370 GB.
+  c.push_back({"expected_beams_92e9",
+               Expect::kError,
+               1,
+               [](const Env& e) {
+                 return e.localize("--set likelihood.expected_beams=92500000000");
+               },
+               {"likelihood.expected_beams", "92500000000", "1048576", "GB"}});
   // A gzipped log whose one line inflates past the line limit.
   c.push_back({"gzip_bomb_one_line",
                Expect::kError,

@@ -70,6 +70,10 @@ struct IntRange {
 /// particle (tests/stress, MillionParticles), so 10^7 particles hold about 1 GB.
 inline constexpr IntRange kParticleCount{1, 10'000'000, 110.0};
 
+/// Readings per scan: as many as the log readers accept (CARMEN num_readings), 4 bytes each
+/// in every scan the filter holds.
+inline constexpr IntRange kBeamCount{0, 1u << 20, 4.0};
+
 /// OpenMP threads: libgomp crashes creating tens of thousands, and past the core count more
 /// threads only take turns.
 inline constexpr int kMaxThreads = 1024;
@@ -190,7 +194,7 @@ void describe_likelihood(V& v, Config& c) {
              "must be >= 1 with mode max_beams");
     });
     v.integer(Field{"expected_beams", "", "readings per scan; 0 accepts any count"},
-              l.expected_beams, IntRange{0});
+              l.expected_beams, kBeamCount);
   });
 }
 

@@ -38,9 +38,6 @@ constexpr double kGlitchReach = 1.2;
 // least this much (radians): along a corridor some shifted pose fits better wherever the
 // map is wrong.
 constexpr double kFadedHeading = 0.17;
-// A place elsewhere on the map (a kidnapping) must explain this many scans in a row while
-// the prediction stays lost: clutter can make a far place fit better for a few scans.
-constexpr int kKidnapScans = 10;
 // Metres of new view over which a place the sweep found must stay ahead of a prediction
 // that still fits, before the filter moves there.
 constexpr double kSettledView = 10.0;
@@ -59,6 +56,9 @@ void HypothesisTracker::track(const Pose2& prediction, const Pose2& delta, std::
   const double step = std::hypot(delta.x, delta.y);
   const double view = step + kViewPerRadian * std::abs(delta.theta);
   const double fade = std::exp(-view / kEvidenceView);
+  // Clutter (people around the robot) lowers the prediction's fit for as long as it stays:
+  // new view seen meanwhile is no sign that the filter settled on the wrong place.
+  const bool steady = !have_fit_mean_ || fit >= kNormalFit * fit_usual_;
   for (Competitor& c : competitors_) {
     const Scored k = climb(c.pose.compose(delta));
     c.pose = k.pose;
@@ -66,6 +66,7 @@ void HypothesisTracker::track(const Pose2& prediction, const Pose2& delta, std::
     c.evidence = c.evidence * fade + c.last;
     c.fit = fit_of(k);
     c.view += view;
+    if (steady) c.steady_view += view;
     ++c.age;
   }
 
@@ -171,7 +172,7 @@ void HypothesisTracker::add(const Scored& c, const Scored& ref, Competitor::Orig
     }
     return;
   }
-  competitors_.push_back({c.pose, e, e, fit_of(c), 0.0, 0, origin, abrupt});
+  competitors_.push_back({c.pose, e, e, fit_of(c), 0.0, 0.0, 0, origin, abrupt});
 }
 
 void HypothesisTracker::prune(const Scored& ref) {
@@ -224,9 +225,10 @@ bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, doubl
         c.fit >= fit + kGlitchGain)
       return true;
     // Or the filter settled on a wrong place that fits almost as well (a building's
-    // near-symmetry): the other place stayed ahead over a long stretch of new view, fits
-    // as the map usually does, and its readings cross no more walls.
-    return cfg_.free_space && crossing <= blocked && c.view >= kSettledView &&
+    // near-symmetry): the other place stayed ahead over a long stretch of new view while
+    // the prediction fitted as usual, fits as the map usually does, and its readings cross
+    // no more walls.
+    return cfg_.free_space && crossing <= blocked && c.steady_view >= kSettledView &&
            c.fit >= kNormalFit * usual && c.fit > fit;
   }
   if (!abrupt && !(nearby && turned >= kFadedHeading)) return false;
@@ -249,8 +251,8 @@ void HypothesisTracker::maybe_switch(const Scored& ref, double fit, std::size_t 
   out.switched = true;
   // The old prediction becomes a competitor, with the evidence against it; it may come back
   // as a glitch candidate would, should the switch have been wrong.
-  *winner = {ref.pose, -winner->evidence,           -winner->last, fit, 0.0,
-             0,        Competitor::Origin::kRescue, true};
+  *winner = {ref.pose, -winner->evidence, -winner->last, fit, 0.0, 0.0, 0,
+             Competitor::Origin::kRescue, true};
 }
 
 }  // namespace pgmcl::detail

@@ -59,7 +59,7 @@ void HypothesisTracker::converged(const Pose2& estimate) {
     bool dup = same_place(p, estimate);
     for (const Competitor& c : competitors_) dup = dup || same_place(c.pose, p);
     if (!dup)
-      competitors_.push_back({p, 0.0, 0.0, 0.0, 0.0, 0, Competitor::Origin::kGlobal, false});
+      competitors_.push_back({p, 0.0, 0.0, 0.0, 0.0, 0.0, 0, Competitor::Origin::kGlobal, false});
   }
 }
 

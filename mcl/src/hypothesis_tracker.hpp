@@ -62,6 +62,16 @@ class HypothesisTracker {
                         const PreparedBeams& beams, const Pose2& prediction, const Pose2& delta,
                         std::size_t particles);
 
+  /// While tracking, a redrawn lineage farther than this (metres) from the prediction stays
+  /// on probation (RecoveryConfig) until the prediction has lost the scan for
+  /// kKidnapScans updates: a far place takes the estimate only as may_switch() allows.
+  [[nodiscard]] double hold_radius() const noexcept {
+    return global_ || lost_updates_ >= kKidnapScans ? -1.0 : cfg_.rescue_xy;
+  }
+  // A place elsewhere on the map (a kidnapping) must explain this many scans in a row while
+  // the prediction stays lost: clutter can make a far place fit better for a few scans.
+  static constexpr int kKidnapScans = 10;
+
   /// Map-local metres in a free cell.
   [[nodiscard]] bool is_free(double x, double y) const noexcept { return free_.is_free(x, y); }
 
@@ -83,6 +93,7 @@ class HypothesisTracker {
     double last = 0.0;      // this update's share of it
     double fit = 0.0;       // fraction of the probe beams that fit the map there
     double view = 0.0;      // new view since it was found (metres, kViewPerRadian)
+    double steady_view = 0.0;  // ... of it while the prediction fitted as the map usually does
     int age = 0;            // updates tracked
     // Where it came from decides what it may do (may_switch): a place the global search
     // proposed had the prior of the one the filter settled on; one found around a

@@ -170,11 +170,12 @@ bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, Up
   if (ws_.selected_beams.empty()) return false;
 
   model_.prepare(scan, ws_.selected_beams);
+  const Pose2 prediction = origin_.between(anchor_).compose(delta);  // map-local
   if (hypotheses_) {
     // Competing hypotheses may redraw some particles before the scan scores them all.
-    const detail::HypothesisStep h =
-        hypotheses_->update(scan, ws_.selected_beams, model_.beams(),
-                            origin_.between(anchor_).compose(delta), delta, p_.size());
+    const detail::HypothesisStep h = hypotheses_->update(scan, ws_.selected_beams,
+                                                         model_.beams(), prediction, delta,
+                                                         p_.size());
     seed_particles(h.seed);
     r.seeded = h.seed.poses.empty() ? 0 : std::min(h.seed.count, p_.size());
     r.switched = h.switched;
@@ -222,7 +223,7 @@ bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, Up
   r.tempering = tau;
   for (std::size_t i = 0; i < n; ++i) p_.log_w[i] += tau * ws_.scan_ll[i];
   (void)normalise_log_weights(p_.log_w, p_.w);
-  limit_probation_weight();
+  limit_probation_weight(prediction);
   r.n_eff = effective_sample_size(p_.w);
   return true;
 }
@@ -245,7 +246,7 @@ void Localizer::update_recovery_averages(double w_avg, UpdateResult& r) noexcept
   r.w_fast = w_fast_;
 }
 
-void Localizer::limit_probation_weight() {
+void Localizer::limit_probation_weight(const Pose2& prediction) {
   // Together, the particles on probation hold at most RecoveryConfig::probation_weight
   // (see there for why). Compared in log space: a random pose that fits 100 nats better
   // than the cluster has a weight share of 1 - 1e-44, which is 1.0 in double.
@@ -265,8 +266,17 @@ void Localizer::limit_probation_weight() {
       (void)normalise_log_weights(p_.log_w, p_.w);
     }
   }
-  for (std::uint8_t& k : probation_)
-    if (k != 0) --k;
+  // Far from the prediction, probation waits for the tracker (HypothesisTracker::
+  // hold_radius()): in clutter a random pose can fit better than the true one for longer
+  // than any probation, and one that does is no evidence of a kidnapping by itself.
+  const double hold = hypotheses_ ? hypotheses_->hold_radius() : -1.0;
+  const auto hold2 = static_cast<float>(hold * hold);
+  const auto px = static_cast<float>(prediction.x), py = static_cast<float>(prediction.y);
+  for (std::size_t i = 0; i < p_.size(); ++i) {
+    if (probation_[i] == 0) continue;
+    const float dx = p_.x[i] - px, dy = p_.y[i] - py;
+    if (hold < 0.0 || dx * dx + dy * dy <= hold2) --probation_[i];
+  }
 }
 
 void Localizer::count_background(UpdateResult& r) const noexcept {

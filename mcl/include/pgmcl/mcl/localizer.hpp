@@ -102,7 +102,7 @@ class Localizer {
   /// Redraws the `count` lightest particles around `seed.poses` before the scan scores them.
   void seed_particles(const detail::SeedRequest& seed);
   void update_recovery_averages(double w_avg, UpdateResult& r) noexcept;
-  void limit_probation_weight();
+  void limit_probation_weight(const Pose2& prediction);  // map-local
   void resample(UpdateResult& r);
   [[nodiscard]] std::size_t kld_sample_count(Rng& rng, double p_inject, Rng& inject_rng);
   void compute_estimate(UpdateResult& r);

@@ -70,7 +70,8 @@ struct RecoveryConfig {
   double alpha_slow = 0.001;  ///< long-term average rate (per measurement update)
   double alpha_fast = 0.1;    ///< short-term average rate (per measurement update)
   /// Measurement updates a redrawn lineage waits before it competes freely, <= 255: one
-  /// scan that fits badly at the true pose must not hand the set to a random pose.
+  /// scan that fits badly at the true pose must not hand the set to a random pose. With
+  /// competing hypotheses, far from the prediction it waits longer (mcl/README.md).
   std::size_t probation = 30;
   double probation_weight = 0.02;  ///< largest total weight of the lineages on probation
 };

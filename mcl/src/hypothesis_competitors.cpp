@@ -251,8 +251,8 @@ void HypothesisTracker::maybe_switch(const Scored& ref, double fit, std::size_t 
   out.switched = true;
   // The old prediction becomes a competitor, with the evidence against it; it may come back
   // as a glitch candidate would, should the switch have been wrong.
-  *winner = {ref.pose, -winner->evidence, -winner->last, fit, 0.0, 0.0, 0,
-             Competitor::Origin::kRescue, true};
+  *winner = {ref.pose, -winner->evidence,           -winner->last, fit, 0.0, 0.0,
+             0,        Competitor::Origin::kRescue, true};
 }
 
 }  // namespace pgmcl::detail

@@ -88,13 +88,13 @@ class HypothesisTracker {
     PoseScore score{};
   };
   struct Competitor {
-    Pose2 pose{};           // map-local
-    double evidence = 0.0;  // tempered nats against the prediction, fading with view
-    double last = 0.0;      // this update's share of it
-    double fit = 0.0;       // fraction of the probe beams that fit the map there
-    double view = 0.0;      // new view since it was found (metres, kViewPerRadian)
+    Pose2 pose{};              // map-local
+    double evidence = 0.0;     // tempered nats against the prediction, fading with view
+    double last = 0.0;         // this update's share of it
+    double fit = 0.0;          // fraction of the probe beams that fit the map there
+    double view = 0.0;         // new view since it was found (metres, kViewPerRadian)
     double steady_view = 0.0;  // ... of it while the prediction fitted as the map usually does
-    int age = 0;            // updates tracked
+    int age = 0;               // updates tracked
     // Where it came from decides what it may do (may_switch): a place the global search
     // proposed had the prior of the one the filter settled on; one found around a
     // prediction that stopped fitting is a glitch candidate; one the map sweep found

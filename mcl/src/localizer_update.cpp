@@ -173,9 +173,8 @@ bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, Up
   const Pose2 prediction = origin_.between(anchor_).compose(delta);  // map-local
   if (hypotheses_) {
     // Competing hypotheses may redraw some particles before the scan scores them all.
-    const detail::HypothesisStep h = hypotheses_->update(scan, ws_.selected_beams,
-                                                         model_.beams(), prediction, delta,
-                                                         p_.size());
+    const detail::HypothesisStep h =
+        hypotheses_->update(scan, ws_.selected_beams, model_.beams(), prediction, delta, p_.size());
     seed_particles(h.seed);
     r.seeded = h.seed.poses.empty() ? 0 : std::min(h.seed.count, p_.size());
     r.switched = h.switched;

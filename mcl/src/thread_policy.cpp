@@ -12,18 +12,17 @@ void ThreadPolicy::Samples::add(double x) noexcept {
   n = std::min(n + 1, kWindow);
 }
 
-double ThreadPolicy::Samples::median() const noexcept {
-  std::array<double, kWindow> s = v;
-  for (std::size_t i = 1; i < n; ++i)  // insertion sort of the n samples held
-    for (std::size_t j = i; j > 0 && s[j - 1] > s[j]; --j) std::swap(s[j - 1], s[j]);
-  return n % 2 == 1 ? s[n / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
+double ThreadPolicy::Samples::mean() const noexcept {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < n; ++i) sum += v[i];
+  return n > 0 ? sum / static_cast<double>(n) : 0.0;
 }
 
 int ThreadPolicy::next() noexcept {
   if (team_ == 1) return 1;
   ++updates_;
   const Samples& other = team_preferred_ ? serial_ : team_samples_;
-  const bool tryout = updates_ > kWarmup && (other.n == 0 || retry_ || updates_ % kProbeEvery == 0);
+  const bool tryout = updates_ > kWarmup && (other.n == 0 || retry_ || updates_ >= next_try_);
   retry_ = false;
   return team_preferred_ != tryout ? team_ : 1;
 }
@@ -35,13 +34,23 @@ void ThreadPolicy::record(int threads, double ms, double work) noexcept {
   const bool team = threads != 1;
   Samples& mine = team ? team_samples_ : serial_;
   const Samples& preferred = team_preferred_ ? team_samples_ : serial_;
-  // A try that beat the preferred count is repeated until its median decides.
-  if (team != team_preferred_ && preferred.n > 0 && cost < preferred.median()) retry_ = true;
+  if (team != team_preferred_) {
+    // A try: one that beat the preferred count is repeated until the means decide; one
+    // that lost makes the next try wait twice as long.
+    const bool won = preferred.n == 0 || cost < preferred.mean();
+    retry_ = won && preferred.n > 0;
+    interval_ = won ? kProbeEvery : std::min(2 * interval_, kMaxProbeEvery);
+    next_try_ = updates_ + interval_;
+  }
   mine.add(cost);
   const bool was = team_preferred_;
   if (serial_.n > 0 && team_samples_.n > 0)
-    team_preferred_ = team_samples_.median() <= serial_.median();
-  if (team_preferred_ != was) retry_ = false;
+    team_preferred_ = team_samples_.mean() <= serial_.mean();
+  if (team_preferred_ != was) {
+    retry_ = false;
+    interval_ = kProbeEvery;
+    next_try_ = updates_ + interval_;
+  }
 }
 
 }  // namespace pgmcl

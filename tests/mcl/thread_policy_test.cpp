@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <vector>
 
 namespace pgmcl {
@@ -47,15 +49,17 @@ TEST(ThreadPolicy, FollowsTheLoadBothWays) {
   (void)drive(p, 100, 0.6, 1.0);
   ASSERT_EQ(p.preferred(), 2);
   // A busy core: the team now costs twice the serial time; within a few updates the
-  // median of the team's samples passes the serial one.
+  // mean of the team's samples passes the serial one.
   const std::vector<int> busy = drive(p, 200, 2.0, 1.05);
   EXPECT_EQ(p.preferred(), 1);
   int team_after_switch = 0;
   for (std::size_t i = 10; i < busy.size(); ++i) team_after_switch += busy[i] == 2;
-  EXPECT_LE(team_after_switch, 4);  // only the periodic tries
-  for (int i = 0; i < 3; ++i) EXPECT_EQ(busy[static_cast<std::size_t>(i)], 2);
-  // The load goes: the next try wins, is repeated at once, and the team is back.
-  const std::vector<int> quiet = drive(p, 80, 0.6, 1.0);
+  EXPECT_LE(team_after_switch, 2);  // tries after 64, then 128 updates
+  for (int i = 0; i < 2; ++i) EXPECT_EQ(busy[static_cast<std::size_t>(i)], 2);
+  // The load goes: the next try, at most kMaxProbeEvery updates on, wins, is repeated at
+  // once, and the team is back.
+  const std::vector<int> quiet =
+      drive(p, static_cast<int>(ThreadPolicy::kMaxProbeEvery) + 20, 0.6, 1.0);
   EXPECT_EQ(p.preferred(), 2);
   int first_try = -1;
   for (std::size_t i = 0; i < quiet.size(); ++i)
@@ -64,20 +68,41 @@ TEST(ThreadPolicy, FollowsTheLoadBothWays) {
       break;
     }
   ASSERT_GE(first_try, 0);
-  // From the first winning try on, the team is used on every update.
-  for (std::size_t i = static_cast<std::size_t>(first_try); i < quiet.size(); ++i)
+  // From the first winning try on, the team is used on every update but the tries of one
+  // thread, which lose (after 64 updates, then 128, ...).
+  for (std::size_t i = static_cast<std::size_t>(first_try);
+       i < std::min(quiet.size(), static_cast<std::size_t>(first_try) + 60); ++i)
     EXPECT_EQ(quiet[i], 2) << "update " << i;
+  EXPECT_LE(count(std::vector<int>(quiet.begin() + first_try, quiet.end()), 1), 3);
 }
 
-TEST(ThreadPolicy, OneSlowTryDoesNotSwitch) {
+TEST(ThreadPolicy, TriesThatKeepLosingComeLater) {
+  ThreadPolicy p(2);
+  const std::vector<int> used = drive(p, 2000, 2.0, 1.0);  // a busy core throughout
+  EXPECT_EQ(p.preferred(), 1);
+  std::vector<int> tries;  // updates that ran the team after the first switch
+  for (std::size_t i = 10; i < used.size(); ++i)
+    if (used[i] == 2) tries.push_back(static_cast<int>(i));
+  // 64, 128, 256, then every 512 updates: 6 tries instead of 31 at a fixed 64.
+  ASSERT_EQ(tries.size(), 6u);
+  for (std::size_t k = 1; k < tries.size(); ++k) {
+    const int gap = tries[k] - tries[k - 1];
+    EXPECT_EQ(gap, static_cast<int>(std::min<std::uint64_t>(ThreadPolicy::kProbeEvery << k,
+                                                            ThreadPolicy::kMaxProbeEvery)));
+  }
+}
+
+TEST(ThreadPolicy, AHiccupCostsOnlyAFewSerialUpdates) {
   ThreadPolicy p(2);
   (void)drive(p, 100, 0.6, 1.0);
-  // One team update hit by a hiccup costs 5x: the median of five ignores it.
+  // One team update hit by a hiccup costs 5x: the mean of five sees it and one thread
+  // runs until the tries, which win, have pushed it out of the window.
   p.record(2, 5000.0, 1000.0);
-  EXPECT_EQ(p.preferred(), 2);
   p.record(2, 0.0, 1000.0);  // not a measurement: ignored
   p.record(2, 1.0, 0.0);
+  const std::vector<int> after = drive(p, 200, 0.6, 1.0);
   EXPECT_EQ(p.preferred(), 2);
+  EXPECT_LE(count(after, 1), static_cast<int>(ThreadPolicy::kProbeEvery) + 5);
 }
 
 }  // namespace

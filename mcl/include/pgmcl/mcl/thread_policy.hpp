@@ -9,10 +9,13 @@
 /// shares a core falls behind), and the wait policy that would avoid it can only be set
 /// through the environment. So the engine measures: each measured update's wall time per
 /// unit of work (particles x beams) is recorded for the thread count it ran with; the
-/// cheaper count by the median of its last few updates is used, and the other one is tried
-/// every kProbeEvery-th update (again at once while those tries keep winning), so a change
-/// of load is followed within a few updates. The results do not depend on it: the blocks
-/// and random streams are fixed, so any thread count gives the same bits.
+/// cheaper count by the mean of its last few updates is used (the mean, not the median: a
+/// team beside a busy core is slow by its tail, a few updates that wait out another
+/// process's time slice). The other count is tried again after kProbeEvery updates, at
+/// once while those tries keep winning, and after twice as many each time one loses (up
+/// to kMaxProbeEvery): a change of load is followed within a few hundred updates, and a
+/// load that stays costs few slow tries. The results do not depend on it: the blocks and
+/// random streams are fixed, so any thread count gives the same bits.
 
 #include <array>
 #include <cstddef>
@@ -22,9 +25,11 @@ namespace pgmcl {
 
 class ThreadPolicy {
  public:
-  static constexpr std::size_t kWindow = 5;         ///< samples per count (median)
-  static constexpr std::uint64_t kProbeEvery = 64;  ///< updates between tries of the other count
-  static constexpr std::uint64_t kWarmup = 2;       ///< updates before the first try
+  static constexpr std::size_t kWindow = 5;  ///< samples per count (mean)
+  static constexpr std::uint64_t kProbeEvery =
+      64;  ///< updates before the next try of the other count
+  static constexpr std::uint64_t kMaxProbeEvery = 512;  ///< ... after tries that kept losing
+  static constexpr std::uint64_t kWarmup = 2;           ///< updates before the first try
 
   /// `requested`: LocalizerConfig::threads (1 = always serial; 0 = OpenMP's default team).
   explicit ThreadPolicy(int requested = 1) noexcept : team_(requested) {}
@@ -43,13 +48,15 @@ class ThreadPolicy {
     std::array<double, kWindow> v{};
     std::size_t n = 0, next = 0;
     void add(double x) noexcept;
-    [[nodiscard]] double median() const noexcept;
+    [[nodiscard]] double mean() const noexcept;
   };
 
   int team_;
   bool team_preferred_ = true;
   bool retry_ = false;  // the last try beat the preferred count: try again next update
   std::uint64_t updates_ = 0;
+  std::uint64_t interval_ = kProbeEvery;      // updates from one try to the next
+  std::uint64_t next_try_ = kProbeEvery + 1;  // the update of the next try
   Samples serial_, team_samples_;
 };
 

@@ -25,9 +25,8 @@ namespace pgmcl {
 
 class ThreadPolicy {
  public:
-  static constexpr std::size_t kWindow = 5;  ///< samples per count (mean)
-  static constexpr std::uint64_t kProbeEvery =
-      64;  ///< updates before the next try of the other count
+  static constexpr std::size_t kWindow = 5;             ///< samples per count (mean)
+  static constexpr std::uint64_t kProbeEvery = 64;      ///< updates until the other count's try
   static constexpr std::uint64_t kMaxProbeEvery = 512;  ///< ... after tries that kept losing
   static constexpr std::uint64_t kWarmup = 2;           ///< updates before the first try
 

@@ -87,11 +87,12 @@ struct Case {
 };
 
 /// The corpus, by issue-14 class.
-std::vector<Case> resource_cases();     // crashes, memory and time limits
-std::vector<Case> silent_cases();       // silent wrong results turned into errors or warnings
-std::vector<Case> output_cases();       // in == out, all-or-nothing outputs, re-runs, folders
-std::vector<Case> message_cases();      // messages that name the culprit
-std::vector<Case> first_round_cases();  // issue 6's inputs, still clear errors or skips
+std::vector<Case> resource_cases();       // crashes, memory and time limits
+std::vector<Case> silent_cases();         // silent wrong results turned into errors or warnings
+std::vector<Case> start_and_map_cases();  // ... for start poses and maps
+std::vector<Case> output_cases();         // in == out, all-or-nothing outputs, re-runs, folders
+std::vector<Case> message_cases();        // messages that name the culprit
+std::vector<Case> first_round_cases();    // issue 6's inputs, still clear errors or skips
 
 /// A text with `line` repeated to about `bytes` bytes.
 [[nodiscard]] std::string repeat(const std::string& line, std::size_t bytes);

@@ -19,8 +19,8 @@ namespace fs = std::filesystem;
 
 std::vector<Case> all_cases() {
   std::vector<Case> all;
-  for (auto part :
-       {resource_cases(), silent_cases(), output_cases(), message_cases(), first_round_cases()}) {
+  for (auto part : {resource_cases(), silent_cases(), start_and_map_cases(), output_cases(),
+                    message_cases(), first_round_cases()}) {
     all.insert(all.end(), part.begin(), part.end());
   }
   return all;

@@ -69,10 +69,12 @@ inline void expect_final_pose_near(const Env& e, double tol, bool whole_log = fa
       << "ends at (" << p.x << ", " << p.y << "), truth (" << end.x << ", " << end.y << ")";
 }
 
-/// A map YAML's keys after `image:` (trinary, Intel-style thresholds).
-inline std::string map_keys(const std::string& origin, const std::string& resolution = "0.05") {
-  return "resolution: " + resolution + "\norigin: " + origin +
-         "\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
+/// A map YAML's keys after `image:` (trinary, Intel-style thresholds unless given).
+inline std::string map_keys(const std::string& origin, const std::string& resolution = "0.05",
+                            const std::string& negate = "0",
+                            const std::string& occupied_thresh = "0.65") {
+  return "resolution: " + resolution + "\norigin: " + origin + "\nnegate: " + negate +
+         "\noccupied_thresh: " + occupied_thresh + "\nfree_thresh: 0.196\n";
 }
 
 inline const std::string kIntelOrigin = "[-20.9, -26.7, 0]";

@@ -17,7 +17,7 @@ fuzz_seconds=${PGMCL_FUZZ_SECONDS:-30}
 root=$PWD
 t0=$SECONDS
 stage_start=$SECONDS
-stage_done() {  # prints how long the stage that just ended took (CI budget: 20 min in all)
+stage_done() {  # prints how long the stage that just ended took (CI budget: 30 min in all)
   echo "== $1 done in $((SECONDS - stage_start)) s"
   stage_start=$SECONDS
 }
@@ -35,7 +35,7 @@ stage_done "[1/4]"
 
 echo "== [2/4] Debug + ASan/UBSan build + tests (serial, no OpenMP)"
 # -g1 (line tables only): sanitizer reports keep file:line, and the stage compiles ~25 %
-# faster than with full -g (its compile time is most of CI's 20-minute budget).
+# faster than with full -g (its compile time is most of CI's 30-minute budget).
 # No Python module here: an ASan-instrumented extension needs the sanitizer runtime preloaded
 # into an uninstrumented interpreter; the module is built and tested in stage 1.
 cmake -S . -B build/asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g1 -O1" \

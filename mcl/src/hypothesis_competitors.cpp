@@ -118,7 +118,7 @@ void HypothesisTracker::rescue(const Scored& ref, int widen, bool abrupt, Hypoth
   q.y = ref.pose.y;
   q.theta = ref.pose.theta;
   q.half_xy = cfg_.rescue_xy;
-  q.half_theta = std::min(std::numbers::pi, cfg_.rescue_theta * widen);
+  q.half_theta = rescue_half_theta(widen);
   q.max_candidates = kRescueCandidates;
   q.separation_xy = 0.5 * cfg_.separation_xy;
   q.separation_theta = 0.5 * cfg_.separation_theta;
@@ -128,6 +128,15 @@ void HypothesisTracker::rescue(const Scored& ref, int widen, bool abrupt, Hypoth
   out.searched = true;
   for (const PoseCandidate& c : search_.search(q).candidates)
     add(refine(c), ref, Competitor::Origin::kRescue, abrupt);
+}
+
+double HypothesisTracker::rescue_half_theta(int widen) const noexcept {
+  return std::min(std::numbers::pi, cfg_.rescue_theta * std::max(1, widen));
+}
+
+bool HypothesisTracker::in_rescue_window(const Pose2& pose, const Pose2& ref) const noexcept {
+  return std::abs(pose.x - ref.x) <= cfg_.rescue_xy && std::abs(pose.y - ref.y) <= cfg_.rescue_xy &&
+         std::abs(wrap_angle(pose.theta - ref.theta)) <= rescue_half_theta(lost_updates_);
 }
 
 void HypothesisTracker::sweep(const Scored& ref, std::size_t particles, bool lost) {
@@ -228,8 +237,13 @@ bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, doubl
     // near-symmetry): the other place stayed ahead over a long stretch of new view while
     // the prediction fitted as usual, fits as the map usually does, and its readings cross
     // no more walls.
-    return cfg_.free_space && crossing <= blocked && c.steady_view >= kSettledView &&
-           c.fit >= kNormalFit * usual && c.fit > fit;
+    if (cfg_.free_space && crossing <= blocked && c.steady_view >= kSettledView &&
+        c.fit >= kNormalFit * usual && c.fit > fit)
+      return true;
+    // Within the rescue window it is a glitch candidate, whichever search found it: the
+    // sweep also finds corrected poses the rescue search misses (a window widened past its
+    // budget, or a fit that faded without a fall that would have started a search).
+    if (!in_rescue_window(c.pose, ref.pose)) return false;
   }
   if (!abrupt && !(nearby && turned >= kFadedHeading)) return false;
   return c.fit >= fit + (abrupt ? 0.5 : 1.0) * kGlitchGain;

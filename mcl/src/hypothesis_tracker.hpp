@@ -98,7 +98,7 @@ class HypothesisTracker {
     // Where it came from decides what it may do (may_switch): a place the global search
     // proposed had the prior of the one the filter settled on; one found around a
     // prediction that stopped fitting is a glitch candidate; one the map sweep found
-    // would be a kidnapping.
+    // would be a kidnapping, or a glitch candidate while within the rescue window.
     enum class Origin : std::uint8_t { kGlobal, kRescue, kSweep } origin = Origin::kSweep;
     bool abrupt = false;  // found while the prediction's fit had fallen at once
   };
@@ -109,6 +109,10 @@ class HypothesisTracker {
   /// Searches around the prediction, over `widen` times the rescue heading window; the
   /// candidates are glitch candidates when `abrupt` (the fit fell at once).
   void rescue(const Scored& ref, int widen, bool abrupt, HypothesisStep& out);
+  /// The rescue search's heading half-width on the `widen`-th update it runs in a row.
+  [[nodiscard]] double rescue_half_theta(int widen) const noexcept;
+  /// `pose` lies within this update's rescue window around `ref`.
+  [[nodiscard]] bool in_rescue_window(const Pose2& pose, const Pose2& ref) const noexcept;
   void sweep(const Scored& ref, std::size_t particles, bool lost);
   void prune(const Scored& ref);
   /// `blocked`: blocked_beams() at the prediction.

@@ -245,6 +245,9 @@ bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, doubl
     // budget, or a fit that faded without a fall that would have started a search).
     if (!in_rescue_window(c.pose, ref.pose)) return false;
   }
+  // A shift without a turn (a slip) is where a corridor's aliases lie, each fitting about
+  // as well as the next: the free space must not speak for the prediction.
+  if (turned < kFadedHeading && crossing > blocked) return false;
   if (!abrupt && !(nearby && turned >= kFadedHeading)) return false;
   return c.fit >= fit + (abrupt ? 0.5 : 1.0) * kGlitchGain;
 }

@@ -12,6 +12,7 @@
    motion update; global_localization spreads the cloud, and the filter finds the robot.
 5. Restarts the node with the map on the `map` topic instead of ~map_file: it resumes from
    ~pose_file, and a second map in the same frame keeps the particles.
+6. Restarts it with use_map_topic false: it asks the static_map service for the map.
 Every process is stopped on exit, failure included. Exit 0 when every check passes.
 """
 import argparse
@@ -436,6 +437,31 @@ def run_all(args, work, env, procs, check):
     check(moved is not None and moved < 1e-9,
           f"a second map in the same frame keeps the particles ({len(after)} of "
           f"{len(before)}, moved {moved})")
+
+    # ---- Phase 4: use_map_topic false and no ~map_file: the map comes from the static_map
+    # service, as amcl gets it from map_server (which Debian lacks; this test serves it).
+    os.killpg(node.pid, signal.SIGINT)
+    node.wait(timeout=10)
+    map_pub.unregister()  # its latched map must not be what the node uses
+    from nav_msgs.srv import GetMap, GetMapResponse
+    served = []
+
+    def serve_map(_):
+        served.append(time.monotonic())
+        return GetMapResponse(map=read_map_message(f"{work}/map.yaml"))
+
+    service = rospy.Service("/static_map", GetMap, serve_map)
+    n_clouds = len(clouds)
+    node = procs.start("pgmcl_node_static_map",
+                       [a for a in node_args if "_initial_pose" not in a and "_map_file" not in a]
+                       + ["_use_map_topic:=false"], env)
+    check(wait_for(lambda: len(clouds) > n_clouds, 30) and len(served) == 1,
+          f"static_map: the node asked the service once ({len(served)}) and publishes its start")
+    mean = clouds[-1].mean(axis=0)
+    check(math.hypot(mean[0] - sx, mean[1] - sy) < 0.05,
+          f"static_map: starts {math.hypot(mean[0] - sx, mean[1] - sy):.3f} m from the pose in "
+          f"~pose_file")
+    service.shutdown()
 
 
 def read_map_message(yaml_path):

@@ -39,8 +39,7 @@ void ThreadPolicy::record(int threads, double ms, double work) noexcept {
     // that lost makes the next try wait twice as long.
     const bool won = preferred.n == 0 || cost < preferred.mean();
     retry_ = won && preferred.n > 0;
-    interval_ = won ? kProbeEvery : std::min(2 * interval_, kMaxProbeEvery);
-    next_try_ = updates_ + interval_;
+    schedule_try(won ? kProbeEvery : std::min(2 * interval_, kMaxProbeEvery));
   }
   mine.add(cost);
   const bool was = team_preferred_;
@@ -48,9 +47,13 @@ void ThreadPolicy::record(int threads, double ms, double work) noexcept {
     team_preferred_ = team_samples_.mean() <= serial_.mean();
   if (team_preferred_ != was) {
     retry_ = false;
-    interval_ = kProbeEvery;
-    next_try_ = updates_ + interval_;
+    schedule_try(kProbeEvery);
   }
+}
+
+void ThreadPolicy::schedule_try(std::uint64_t interval) noexcept {
+  interval_ = interval;
+  next_try_ = updates_ + interval;
 }
 
 }  // namespace pgmcl

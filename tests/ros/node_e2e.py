@@ -415,19 +415,27 @@ def run_all(args, work, env, procs, check):
     sx, sy = float(stored["initial_pose_x"]), float(stored["initial_pose_y"])
     for name in ("initial_pose_x", "initial_pose_y", "initial_pose_a", "map_file"):
         rospy.delete_param(f"/pgmcl_node/{name}")  # command-line values stay on the server
+
+    def resume(log_name, use_map_topic):
+        """The node again without initial_pose_* and ~map_file: it and whether it published
+        a start cloud."""
+        n = len(clouds)
+        kept = [a for a in node_args if "_initial_pose" not in a and "_map_file" not in a]
+        started = procs.start(log_name, kept + [f"_use_map_topic:={str(use_map_topic).lower()}"],
+                              env)
+        return started, wait_for(lambda: len(clouds) > n, 30)
+
+    def check_resumed_from_pose_file(label):
+        mean = clouds[-1].mean(axis=0)
+        off = math.hypot(mean[0] - sx, mean[1] - sy)
+        check(off < 0.05, f"{label}: starts {off:.3f} m from the pose in ~pose_file")
+
     from nav_msgs.msg import OccupancyGrid
     map_pub = rospy.Publisher("/map", OccupancyGrid, queue_size=1, latch=True)
     map_pub.publish(read_map_message(f"{work}/map.yaml"))
-    n_clouds = len(clouds)
-    node = procs.start("pgmcl_node_restart",
-                       [a for a in node_args if "_initial_pose" not in a and "_map_file" not in a]
-                       + ["_use_map_topic:=true"], env)
-    check(wait_for(lambda: len(clouds) > n_clouds, 30),
-          "restart: with the map from the map topic, the node publishes its start")
-    mean = clouds[-1].mean(axis=0)
-    check(math.hypot(mean[0] - sx, mean[1] - sy) < 0.05,
-          f"restart: starts {math.hypot(mean[0] - sx, mean[1] - sy):.3f} m from the pose in "
-          f"~pose_file")
+    node, published = resume("pgmcl_node_restart", True)
+    check(published, "restart: with the map from the map topic, the node publishes its start")
+    check_resumed_from_pose_file("restart")
     before = clouds[-1]
     n_clouds = len(clouds)
     map_pub.publish(read_map_message(f"{work}/map.yaml"))
@@ -451,16 +459,10 @@ def run_all(args, work, env, procs, check):
         return GetMapResponse(map=read_map_message(f"{work}/map.yaml"))
 
     service = rospy.Service("/static_map", GetMap, serve_map)
-    n_clouds = len(clouds)
-    node = procs.start("pgmcl_node_static_map",
-                       [a for a in node_args if "_initial_pose" not in a and "_map_file" not in a]
-                       + ["_use_map_topic:=false"], env)
-    check(wait_for(lambda: len(clouds) > n_clouds, 30) and len(served) == 1,
+    node, published = resume("pgmcl_node_static_map", False)
+    check(published and len(served) == 1,
           f"static_map: the node asked the service once ({len(served)}) and publishes its start")
-    mean = clouds[-1].mean(axis=0)
-    check(math.hypot(mean[0] - sx, mean[1] - sy) < 0.05,
-          f"static_map: starts {math.hypot(mean[0] - sx, mean[1] - sy):.3f} m from the pose in "
-          f"~pose_file")
+    check_resumed_from_pose_file("static_map")
     service.shutdown()
 
 

@@ -49,6 +49,8 @@ class ThreadPolicy {
     void add(double x) noexcept;
     [[nodiscard]] double mean() const noexcept;
   };
+  /// The other count's next try comes `interval` updates from now.
+  void schedule_try(std::uint64_t interval) noexcept;
 
   int team_;
   bool team_preferred_ = true;

@@ -48,7 +48,7 @@ Localizer::Localizer(std::shared_ptr<const maps::LikelihoodField> field,
                      std::vector<std::uint32_t> free_cells, const LocalizerConfig& cfg)
     : cfg_(cfg), field_(std::move(field)), model_(field_), free_cells_(std::move(free_cells)) {
   cfg_.validate();
-  thread_policy_ = ThreadPolicy(cfg_.adaptive_threads ? cfg_.threads : 1);
+  thread_policy_ = ThreadPolicy(cfg_.adaptive_threads ? cfg_.threads : 1, &cores_taken);
   threads_ = cfg_.threads;
   init_geometry();
   if (cfg_.hypotheses.enabled)

@@ -2,7 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <utility>
+
+#ifdef __linux__
+#include <sched.h>
+#endif
 
 namespace pgmcl {
 
@@ -18,12 +23,40 @@ double ThreadPolicy::Samples::mean() const noexcept {
   return n > 0 ? sum / static_cast<double>(n) : 0.0;
 }
 
+bool run_queue_full(const char* loadavg, int cores) noexcept {
+  int running = 0, total = 0;  // "0.50 0.40 0.30 2/345 6789": runnable / all entities
+  if (std::sscanf(loadavg, "%*f %*f %*f %d/%d", &running, &total) != 2) return false;
+  // `running` counts the caller too: the others take every core but its own.
+  return cores > 1 && running >= cores;
+}
+
+bool cores_taken() noexcept {
+#ifdef __linux__
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  if (sched_getaffinity(0, sizeof(allowed), &allowed) != 0) return false;
+  std::FILE* f = std::fopen("/proc/loadavg", "r");
+  if (f == nullptr) return false;
+  char text[128] = {};
+  const bool read = std::fgets(text, sizeof(text), f) != nullptr;
+  std::fclose(f);
+  return read && run_queue_full(text, CPU_COUNT(&allowed));
+#else
+  return false;
+#endif
+}
+
 int ThreadPolicy::next() noexcept {
   if (team_ == 1) return 1;
   ++updates_;
-  const Samples& other = team_preferred_ ? serial_ : team_samples_;
-  const bool tryout = updates_ > kWarmup && (other.n == 0 || retry_ || updates_ >= next_try_);
+  // Beside busy cores, start on one thread; the team gets its tries as usual.
+  if (updates_ == 1 && probe_ != nullptr && probe_()) team_preferred_ = false;
+  bool tryout = updates_ > kWarmup && (updates_ == kWarmup + 1 || retry_ || updates_ >= next_try_);
   retry_ = false;
+  if (tryout && !team_preferred_ && probe_ != nullptr && probe_()) {
+    tryout = false;  // the team would wait out the others' time slices: a lost try
+    schedule_try(std::min(2 * interval_, kMaxProbeEvery));
+  }
   return team_preferred_ != tryout ? team_ : 1;
 }
 

@@ -105,5 +105,38 @@ TEST(ThreadPolicy, AHiccupCostsOnlyAFewSerialUpdates) {
   EXPECT_LE(count(after, 1), static_cast<int>(ThreadPolicy::kProbeEvery) + 5);
 }
 
+bool taken() noexcept {
+  return true;
+}
+bool free_cores() noexcept {
+  return false;
+}
+
+TEST(ThreadPolicy, BesideBusyCoresTheTeamIsNeitherStartedNorTried) {
+  // The run queue says the other cores are taken: not one update runs on the team, where
+  // each would wait out another process's time slice.
+  ThreadPolicy p(2, &taken);
+  const std::vector<int> used = drive(p, 2000, 2.0, 1.0);
+  EXPECT_EQ(count(used, 2), 0);
+  EXPECT_EQ(p.preferred(), 1);
+}
+
+TEST(ThreadPolicy, FreeCoresLeaveTheTriesAsTheyWere) {
+  ThreadPolicy probed(2, &free_cores), blind(2);
+  EXPECT_EQ(drive(probed, 1000, 0.6, 1.0), drive(blind, 1000, 0.6, 1.0));
+  EXPECT_EQ(drive(probed, 1000, 2.0, 1.0), drive(blind, 1000, 2.0, 1.0));
+}
+
+TEST(ThreadPolicy, TheRunQueueTakesTheCoresWhenItHoldsAsManyAsThereAre) {
+  // /proc/loadavg's fourth field: runnable entities (the caller included) / all of them.
+  EXPECT_TRUE(run_queue_full("2.10 1.80 1.20 2/345 6789\n", 2));
+  EXPECT_TRUE(run_queue_full("2.10 1.80 1.20 5/345 6789\n", 4));
+  EXPECT_FALSE(run_queue_full("0.50 0.40 0.30 1/345 6789\n", 2));
+  EXPECT_FALSE(run_queue_full("2.10 1.80 1.20 3/345 6789\n", 4));
+  EXPECT_FALSE(run_queue_full("2.10 1.80 1.20 7/345 6789\n", 1));  // no team to spare
+  EXPECT_FALSE(run_queue_full("", 2));                             // unreadable: no claim
+  EXPECT_FALSE(run_queue_full("garbage", 2));
+}
+
 }  // namespace
 }  // namespace pgmcl

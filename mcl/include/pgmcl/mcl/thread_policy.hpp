@@ -14,7 +14,10 @@
 /// process's time slice). The other count is tried again after kProbeEvery updates, at
 /// once while those tries keep winning, and after twice as many each time one loses (up
 /// to kMaxProbeEvery): a change of load is followed within a few hundred updates, and a
-/// load that stays costs few slow tries. The results do not depend on it: the blocks and
+/// load that stays costs few slow tries. A try of the team is costly exactly when it is
+/// pointless (a team thread waits out another process's time slice), so it is skipped, as
+/// if lost, while the run queue shows the other cores taken (`cores_taken`), and the first
+/// update starts on one thread then too. The results do not depend on it: the blocks and
 /// random streams are fixed, so any thread count gives the same bits.
 
 #include <array>
@@ -23,15 +26,27 @@
 
 namespace pgmcl {
 
+/// Whether other runnable threads take all cores but the caller's, sampled now (Linux: the
+/// run queue of /proc/loadavg against the cores this process may use; elsewhere false).
+[[nodiscard]] bool cores_taken() noexcept;
+/// The rule behind it: `loadavg` (the text of /proc/loadavg) counts at least `cores`
+/// runnable entities. Unreadable text claims nothing (false).
+[[nodiscard]] bool run_queue_full(const char* loadavg, int cores) noexcept;
+
 class ThreadPolicy {
  public:
+  /// Samples the machine's load before a try of the team: true = the other cores are taken.
+  using LoadProbe = bool (*)() noexcept;
+
   static constexpr std::size_t kWindow = 5;             ///< samples per count (mean)
   static constexpr std::uint64_t kProbeEvery = 64;      ///< updates until the other count's try
   static constexpr std::uint64_t kMaxProbeEvery = 512;  ///< ... after tries that kept losing
   static constexpr std::uint64_t kWarmup = 2;           ///< updates before the first try
 
-  /// `requested`: LocalizerConfig::threads (1 = always serial; 0 = OpenMP's default team).
-  explicit ThreadPolicy(int requested = 1) noexcept : team_(requested) {}
+  /// `requested`: LocalizerConfig::threads (1 = always serial; 0 = OpenMP's default team);
+  /// `probe`: consulted before the team is tried or first used (nullptr: never).
+  explicit ThreadPolicy(int requested = 1, LoadProbe probe = nullptr) noexcept
+      : team_(requested), probe_(probe) {}
 
   /// Threads for the next update: `requested` or 1.
   [[nodiscard]] int next() noexcept;
@@ -53,6 +68,7 @@ class ThreadPolicy {
   void schedule_try(std::uint64_t interval) noexcept;
 
   int team_;
+  LoadProbe probe_;
   bool team_preferred_ = true;
   bool retry_ = false;  // the last try beat the preferred count: try again next update
   std::uint64_t updates_ = 0;

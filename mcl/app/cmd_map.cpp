@@ -20,6 +20,7 @@
 #include "pgmcl/io/values.hpp"
 #include "pgmcl/map_io/map_io.hpp"
 #include "pgmcl/maps/occupancy_mapping.hpp"
+#include "run_checks.hpp"
 
 namespace pgmcl::app {
 namespace {
@@ -103,6 +104,19 @@ int run_map(const MapOptions& o) {
                   static_cast<unsigned long long>(maps::kMaxCells));
     throw io::UsageError(buf);
   }
+  // A map localize refuses must not be written: check it against localize's defaults.
+  const LocalizerConfig localize_defaults{};
+  if (o.mapping.resolution > coarsest_usable_resolution(localize_defaults)) {
+    char cells[240];
+    std::snprintf(cells, sizeof cells,
+                  "would be %.0f x %.0f cells, too coarse for localize (a beam of "
+                  "likelihood.beam.max_range = %g m must span %g cells: at most %g m per "
+                  "cell); nothing was written",
+                  w, h, localize_defaults.likelihood.beam.max_range, kMinCellsPerBeam,
+                  coarsest_usable_resolution(localize_defaults));
+    std::snprintf(buf, sizeof buf, "--resolution %g m: the map of ", o.mapping.resolution);
+    throw io::UsageError(buf + o.log + " " + cells);
+  }
   maps::OccupancyMapper mapper(bounds, o.mapping);
   for (const auto& v : views) {
     check_interrupt();
@@ -120,6 +134,9 @@ int run_map(const MapOptions& o) {
                              ": the map has no occupied cell (every beam read 'no "
                              "return' or was filtered out); localize would refuse it, "
                              "so nothing was written");
+  }
+  for (const std::string& w : check_map_for_localisation(grid, o.out, localize_defaults)) {
+    std::fprintf(stderr, "pgmcl: warning: %s\n", w.c_str());
   }
   maps::save_map_image(grid, image_tmp, maps::MapMode::kTrinary);
   write_text_file(yaml_tmp, maps::map_yaml_text(grid, image_name, maps::MapMode::kTrinary, o.out));

@@ -15,8 +15,6 @@ namespace {
 /// LikelihoodField's stamp limit (maps/src/likelihood_field.cpp, kMaxStampReach): the
 /// engine refuses a wider kernel with a message about cells; here it gets its cause.
 constexpr double kMaxKernelReachCells = 1000.0;
-/// A beam must span this many cells for its endpoint to say anything about the map.
-constexpr double kMinCellsPerBeam = 4.0;
 
 std::string g(double v) {
   char buf[32];
@@ -41,6 +39,10 @@ std::string extent_text(const maps::OccupancyGrid& m) {
 
 }  // namespace
 
+double coarsest_usable_resolution(const LocalizerConfig& config) {
+  return config.likelihood.beam.max_range / kMinCellsPerBeam;
+}
+
 std::vector<std::string> check_map_for_localisation(const maps::OccupancyGrid& map,
                                                     const std::string& map_name,
                                                     const LocalizerConfig& config) {
@@ -61,7 +63,7 @@ std::vector<std::string> check_map_for_localisation(const maps::OccupancyGrid& m
   }
   const double res = map.resolution();
   const auto& beam = config.likelihood.beam;
-  if (res * kMinCellsPerBeam > beam.max_range) {
+  if (res > coarsest_usable_resolution(config)) {
     throw maps::MapError(map_name, 0, "resolution",
                          g(res) + " m per cell: a beam of likelihood.beam.max_range = " +
                              g(beam.max_range) + " m spans fewer than " + g(kMinCellsPerBeam) +

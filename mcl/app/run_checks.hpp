@@ -12,6 +12,9 @@
 
 namespace pgmcl::app {
 
+/// A beam must span this many cells for its endpoint to say anything about the map.
+constexpr double kMinCellsPerBeam = 4.0;
+
 /// Refuses (maps::MapError naming `map_name` and the field) a map the filter cannot match
 /// scans against: no occupied cell, cells so coarse that a beam of
 /// likelihood.beam.max_range spans fewer than 4 of them, or a likelihood kernel too wide
@@ -20,6 +23,10 @@ namespace pgmcl::app {
 [[nodiscard]] std::vector<std::string> check_map_for_localisation(const maps::OccupancyGrid& map,
                                                                   const std::string& map_name,
                                                                   const LocalizerConfig& config);
+
+/// The coarsest map resolution (metres per cell) the filter can match scans against with
+/// `config`: a beam of likelihood.beam.max_range must span kMinCellsPerBeam cells.
+[[nodiscard]] double coarsest_usable_resolution(const LocalizerConfig& config);
 
 /// Refuses (io::UsageError naming `what`, "--init" or "FILE: init") a start pose outside the
 /// map or standard deviations past the map's size (a start that wide is --global) or 2π;

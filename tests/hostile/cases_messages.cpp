@@ -201,6 +201,19 @@ std::vector<Case> message_cases() {
        2,
        [](const Env& e) { return "map --log " + e.b.log + " --resolution 1e300 --out m.yaml"; },
        {"--resolution", "1000"}});
+  // Under the 1000 m cap but coarser than localize accepts: refused before anything is written.
+  c.push_back(
+      {"map_command_resolution_10_m",
+       Expect::kError,
+       2,
+       [](const Env& e) { return "map --log " + e.b.log + " --resolution 10 --out m.yaml"; },
+       {"--resolution 10 m", "x", "cells, too coarse for localize", "at most 7.5 m"}});
+  c.push_back(
+      {"map_command_resolution_999_m",
+       Expect::kError,
+       2,
+       [](const Env& e) { return "map --log " + e.b.log + " --resolution 999 --out m.yaml"; },
+       {"--resolution 999 m", "cells, too coarse for localize"}});
   c.push_back({"map_command_every_beam_no_return",
                Expect::kError,
                1,

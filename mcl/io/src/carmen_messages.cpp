@@ -8,11 +8,15 @@
 namespace pgmcl::io::detail {
 namespace {
 
-Pose2 read_pose(FieldCursor& c, std::string_view x, std::string_view y, std::string_view theta) {
+/// `logged_theta` (optional) receives theta before wrapping.
+Pose2 read_pose(FieldCursor& c, std::string_view x, std::string_view y, std::string_view theta,
+                double* logged_theta = nullptr) {
   Pose2 p;
   p.x = c.finite(x);
   p.y = c.finite(y);
-  p.theta = wrap_angle(c.finite(theta));
+  const double logged = c.finite(theta);
+  p.theta = wrap_angle(logged);
+  if (logged_theta != nullptr) *logged_theta = logged;
   return p;
 }
 
@@ -79,7 +83,7 @@ std::pair<std::string, std::string> parse_param(std::span<const std::string_view
 OdomRecord parse_odom(std::span<const std::string_view> tokens) {
   FieldCursor c(tokens, 1);
   OdomRecord r;
-  r.pose = read_pose(c, "x", "y", "theta");
+  r.pose = read_pose(c, "x", "y", "theta", &r.logged_theta);
   r.tv = c.finite("tv");
   r.rv = c.finite("rv");
   r.accel = c.finite("accel");
@@ -104,7 +108,7 @@ CarmenScan parse_flaser(std::span<const std::string_view> tokens, LaserMessage m
   check_count(tokens, 2 + n + 9, "num_readings", n, "readings");
   read_ranges(c, n, s.scan.ranges);
   s.laser_pose = read_pose(c, "x", "y", "theta");
-  s.odom_pose = read_pose(c, "odom_x", "odom_y", "odom_theta");
+  s.odom_pose = read_pose(c, "odom_x", "odom_y", "odom_theta", &s.logged_odom_theta);
   read_tail(c, s.stamp, s);
   const BeamLayout layout = sick_beam_layout(n);
   s.scan.angle_min = layout.angle_min;
@@ -150,7 +154,8 @@ CarmenScan parse_config_laser(std::span<const std::string_view> tokens, LaserMes
     s.remissions[j] = static_cast<float>(c.number("remission", j));
   if (robot) {
     s.laser_pose = read_pose(c, "laser_pose_x", "laser_pose_y", "laser_pose_theta");
-    s.odom_pose = read_pose(c, "robot_pose_x", "robot_pose_y", "robot_pose_theta");
+    s.odom_pose =
+        read_pose(c, "robot_pose_x", "robot_pose_y", "robot_pose_theta", &s.logged_odom_theta);
     s.extras.tv = c.finite("laser_tv");
     s.extras.rv = c.finite("laser_rv");
     s.extras.forward_safety_dist = c.finite("forward_safety_dist");

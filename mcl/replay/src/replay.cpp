@@ -65,29 +65,69 @@ constexpr double kLowFit = 0.5;
 /// Updates after which a filter that never once converged is worth a warning.
 constexpr std::size_t kConvergenceUpdates = 50;
 
-/// Counts odometry steps between consecutive updates that no robot drives.
-struct JumpCounter {
+/// Faster than any mobile robot turns (about 3 rad/s at most); timed over kMinJumpTime it is
+/// also above the 2π by which a wrapped heading steps when it wraps.
+constexpr double kMaxTurnRate = 10.0;  ///< rad/s
+
+/// Steps of one kind (metres or radians) past their limit, and the largest of them.
+struct StepTally {
   std::size_t count = 0;
   double largest = 0.0, largest_dt = 0.0;
   std::size_t largest_line = 0;
+
+  void add(double step, double dt, std::size_t line) {
+    ++count;
+    if (step > largest) {
+      largest = step;
+      largest_dt = dt;
+      largest_line = line;
+    }
+  }
+  void merge(const StepTally& other) {
+    count += other.count;
+    if (other.largest > largest) {
+      largest = other.largest;
+      largest_dt = other.largest_dt;
+      largest_line = other.largest_line;
+    }
+  }
+};
+
+/// Counts steps between consecutive odometry records that no robot drives or turns.
+struct JumpCounter {
+  StepTally moves, turns;
   std::optional<io::StampedPose> last;
 
   void add(const Pose2& odom, double stamp, std::size_t line) {
     if (last) {
       const double d = std::hypot(odom.x - last->pose.x, odom.y - last->pose.y);
+      const double turn = std::abs(odom.theta - last->pose.theta);
       const double dt = stamp - last->stamp;
-      if (d > kMaxSpeed * std::max(dt, kMinJumpTime)) {
-        ++count;
-        if (d > largest) {
-          largest = d;
-          largest_dt = dt;
-          largest_line = line;
-        }
-      }
+      const double timed = std::max(dt, kMinJumpTime);
+      if (d > kMaxSpeed * timed) moves.add(d, dt, line);
+      if (turn > kMaxTurnRate * timed) turns.add(turn, dt, line);
     }
     last = io::StampedPose{stamp, odom};
   }
 };
+
+/// Heading jumps in the odometry records the pairing used, the ODOM messages and the scans'
+/// own odometry fields, each stream on its own and with headings as logged: wrapped, a
+/// heading glitch of 1e6 rad looks like any turn.
+StepTally heading_jumps(const io::CarmenLog& log, const io::PairedScans& paired) {
+  JumpCounter odom, fields;
+  for (const io::OdomRecord& r : log.odometry) {
+    odom.add({r.pose.x, r.pose.y, r.logged_theta}, r.stamp, r.line);
+  }
+  for (const io::PairedScan& p : paired.scans) {
+    const io::CarmenScan& s = log.scans[p.scan_index];
+    if (p.source == io::OdomSource::kScanFields) {
+      fields.add({s.odom_pose.x, s.odom_pose.y, s.logged_odom_theta}, s.stamp, s.line);
+    }
+  }
+  odom.turns.merge(fields.turns);
+  return odom.turns;
+}
 
 std::string g(double v) {
   char buf[32];
@@ -231,12 +271,19 @@ ReplayResult run(const ReplayJob& job, const ReplayHooks& hooks) {
         std::to_string(paired.report.first_repeated_odom_line) +
         "): rounded stamps? Scans between them get the later one's odometry");
   }
-  if (jumps.count > 0) {
+  if (const StepTally& m = jumps.moves; m.count > 0) {
     out.warnings.push_back(
-        job.log_name + ": " + std::to_string(jumps.count) + " odometry jump(s) faster than " +
-        g(kMaxSpeed) + " m/s between consecutive scans (largest " + g(jumps.largest) + " m in " +
-        g(jumps.largest_dt) + " s, at the scan on line " + std::to_string(jumps.largest_line) +
+        job.log_name + ": " + std::to_string(m.count) + " odometry jump(s) faster than " +
+        g(kMaxSpeed) + " m/s between consecutive scans (largest " + g(m.largest) + " m in " +
+        g(m.largest_dt) + " s, at the scan on line " + std::to_string(m.largest_line) +
         "); the filter moves its particles by them and is likely lost there");
+  }
+  if (const StepTally t = heading_jumps(log, paired); t.count > 0) {
+    out.warnings.push_back(
+        job.log_name + ": " + std::to_string(t.count) + " odometry heading jump(s) faster than " +
+        g(kMaxTurnRate) + " rad/s between consecutive odometry records (largest " + g(t.largest) +
+        " rad in " + g(t.largest_dt) + " s, on line " + std::to_string(t.largest_line) +
+        "); the filter turns its particles by them and is likely lost there");
   }
   const std::size_t all = out.metrics.updates + out.metrics.skipped_updates;
   if (all >= 10 && out.metrics.updates * 10 < all) {

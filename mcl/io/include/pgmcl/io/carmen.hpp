@@ -93,6 +93,9 @@ struct CarmenScan {
   Pose2 laser_pose{};
   /// FLASER `odom_*` / ROBOTLASER1 `robot_pose_*`: the robot's odometry pose.
   Pose2 odom_pose{};
+  /// radians, odom_pose.theta as logged, before wrapping (a glitch of 1e6 rad wraps to any
+  /// angle); 0 if not read from a file
+  double logged_odom_theta = 0.0;
   RobotLaserExtras extras;  ///< ROBOTLASER1 only
   std::string host = "pgmcl";
   double logger_stamp = 0.0;  ///< seconds
@@ -108,6 +111,7 @@ struct OdomRecord {
   std::string host = "pgmcl";
   double logger_stamp = 0.0;
   std::size_t line = 0;
+  double logged_theta = 0.0;  ///< radians, pose.theta before wrapping; 0 if not from a file
 };
 
 struct TruePosRecord {

@@ -77,6 +77,9 @@ int run_eval(EvalOptions o) {
                  "estimate's stamps, --tolerance S widens the match\n",
                  o.estimate.c_str(), w.c_str());
   }
+  if (const std::string w = io::truth_coverage_warning(ate); !w.empty()) {
+    std::fprintf(stderr, "pgmcl: warning: %s: %s\n", o.estimate.c_str(), w.c_str());
+  }
   if (!o.relations.empty()) {
     io::RelationOptions ro;
     ro.time_offset = o.time_offset;

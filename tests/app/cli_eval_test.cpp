@@ -110,6 +110,26 @@ TEST(CliEval, APartialMatchWarnsAndReportsTheMatchedFraction) {
   ASSERT_EQ(whole.code, 0) << whole.err;
   EXPECT_EQ(whole.err.find("warning"), std::string::npos) << whole.err;
   EXPECT_EQ(YAML::LoadFile(dir.file("w.yaml"))["truth_matched_fraction"].as<double>(), 1.0);
+  EXPECT_EQ(YAML::LoadFile(dir.file("w.yaml"))["truth_covered_fraction"].as<double>(), 1.0);
+}
+
+TEST(CliEval, AnEstimateOfPartOfTheTruthWarnsAndReportsTheCoveredFraction) {
+  // Every one of the 20 estimate poses matches, but they span 19 of the truth's 99 steps.
+  TempDir dir("cli_eval_covered");
+  const io::Trajectory truth = circle(100);
+  const io::Trajectory est(truth.begin() + 30, truth.begin() + 50);
+  io::write_tum(dir.file("truth.tum"), truth);
+  io::write_tum(dir.file("est.tum"), est);
+  const RunResult r = run_pgmcl("eval --estimate est.tum --truth truth.tum --out m.yaml", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("pgmcl: warning: est.tum: the matched estimate poses cover only 19 % of "
+                       "the ground truth's time span (25.000 to 34.500 s of 10.000 to 59.500 s)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("estimate poses ("), std::string::npos) << "every estimate pose matched";
+  const YAML::Node y = YAML::LoadFile(dir.file("m.yaml"));
+  EXPECT_DOUBLE_EQ(y["truth_matched_fraction"].as<double>(), 1.0);
+  EXPECT_NEAR(y["truth_covered_fraction"].as<double>(), 19.0 / 99.0, 1e-6);
 }
 
 TEST(CliEval, TimeOffsetWithoutRelationsAndToleranceShiftAndWidenTheTruthMatch) {

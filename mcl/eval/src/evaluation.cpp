@@ -1,5 +1,6 @@
 #include "pgmcl/eval/evaluation.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -40,6 +41,19 @@ AteResult evaluate_ate(const Trajectory& estimate, const Trajectory& truth, cons
   }
   res.matched = res.errors.size();
   res.unmatched = res.estimated - res.matched;
+  if (!ref.empty()) {
+    res.truth_from = ref.front().stamp;
+    res.truth_to = ref.back().stamp;
+  }
+  if (!res.errors.empty()) {
+    // Nearest-pose matching may reach past the truth's ends by the tolerance: clamp.
+    res.covered_from =
+        std::clamp(res.errors.front().stamp + opt.time_offset, res.truth_from, res.truth_to);
+    res.covered_to =
+        std::clamp(res.errors.back().stamp + opt.time_offset, res.truth_from, res.truth_to);
+    const double span = res.truth_to - res.truth_from;
+    res.truth_covered_fraction = span > 0.0 ? (res.covered_to - res.covered_from) / span : 1.0;
+  }
   res.translation = error_stats(trans);
   res.heading = error_stats(rot);
 
@@ -93,6 +107,19 @@ std::string ate_match_warning(const AteResult& ate, const AteOptions& opt) {
                     ? 100.0 * static_cast<double>(ate.matched) / static_cast<double>(ate.estimated)
                     : 0.0,
                 rule);
+  return buf;
+}
+
+std::string truth_coverage_warning(const AteResult& ate) {
+  // Two recordings of one run rarely start and stop on the same sample.
+  constexpr double kWholeTruth = 0.95;
+  if (ate.matched == 0 || ate.truth_covered_fraction >= kWholeTruth) return {};
+  char buf[400];
+  std::snprintf(buf, sizeof buf,
+                "the matched estimate poses cover only %.0f %% of the ground truth's time span "
+                "(%.3f to %.3f s of %.3f to %.3f s); the figures score only that part of the run",
+                100.0 * ate.truth_covered_fraction, ate.covered_from, ate.covered_to,
+                ate.truth_from, ate.truth_to);
   return buf;
 }
 

@@ -102,6 +102,7 @@ std::vector<MetricEntry> metrics_entries(const RunMetrics& m, bool run_figures) 
     r.push_back(maybe("converged_after_s", a.converged_after_s));
     r.push_back(count("truth_matched", a.matched));
     r.push_back(real("truth_matched_fraction", a.matched_fraction));
+    r.push_back(real("truth_covered_fraction", a.truth_covered_fraction));
     r.push_back(maybe("lock_on_s", a.lock_on_s));
     r.push_back(real("lock_on_travel_m", a.lock_on_travel_m));
     r.push_back(real("post_lock_ate_rmse_m", a.post_lock_ate_rmse_m));
@@ -131,6 +132,7 @@ AccuracyMetrics accuracy_metrics(const AteResult& ate) {
   a.matched = ate.matched;
   a.matched_fraction =
       ate.estimated ? static_cast<double>(ate.matched) / static_cast<double>(ate.estimated) : 0.0;
+  a.truth_covered_fraction = ate.truth_covered_fraction;
   a.lock_on_s = ate.lock_on_s;
   a.lock_on_travel_m = ate.lock_on_travel_m;
   a.post_lock_ate_rmse_m = ate.post_lock_translation.rms;

@@ -45,8 +45,15 @@ struct AteResult {
   std::size_t estimated = 0;  ///< estimate poses given
   std::size_t matched = 0;    ///< with a truth pose
   std::size_t unmatched = 0;  ///< without one (not scored)
-  ErrorStats translation;     ///< metres; .rms is the ATE RMSE, .max the worst error
-  ErrorStats heading;         ///< degrees; .rms is the heading RMSE
+  /// Seconds, in the truth's clock: the truth's time span, and the part of it between the
+  /// first and the last matched estimate pose (what the figures score).
+  double truth_from = 0.0, truth_to = 0.0;
+  double covered_from = 0.0, covered_to = 0.0;
+  /// Of the truth's time span, the share between the first and last matched estimate pose
+  /// (1 for a truth of one instant that was matched, 0 with no match).
+  double truth_covered_fraction = 0.0;
+  ErrorStats translation;  ///< metres; .rms is the ATE RMSE, .max the worst error
+  ErrorStats heading;      ///< degrees; .rms is the heading RMSE
   /// Seconds from the first estimate stamp to the first matched pose after which every
   /// matched pose is within both thresholds (0 if all are); empty if the last one is not.
   std::optional<double> converged_after_s;
@@ -68,5 +75,10 @@ struct AteResult {
 /// a ground-truth pose (...); the figures cover only those": a partial match scores part of
 /// a run, and usually means the clocks differ.
 [[nodiscard]] std::string ate_match_warning(const AteResult& ate, const AteOptions& opt = {});
+
+/// "" when the matched estimate poses span (nearly) all of the truth's time; else "the
+/// matched estimate poses cover only 9 % of the ground truth's time span (...)": an estimate
+/// of part of the run scores only that part, however well its own poses all match.
+[[nodiscard]] std::string truth_coverage_warning(const AteResult& ate);
 
 }  // namespace pgmcl::io

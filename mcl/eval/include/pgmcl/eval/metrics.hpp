@@ -22,6 +22,8 @@ struct AccuracyMetrics {
   std::optional<double> converged_after_s;
   std::size_t matched = 0;        ///< estimate poses matched to ground truth
   double matched_fraction = 0.0;  ///< of the estimate poses (1: the whole run is scored)
+  /// Of the truth's time span, the share the matched estimate poses span (1: all of it).
+  double truth_covered_fraction = 0.0;
   /// Lock-on (AteResult): seconds from the first estimate until the position error stays
   /// within 1 m (0: never lost; nullopt: lost at the end), the truth's path length until
   /// then, and the errors after it.
@@ -116,7 +118,7 @@ struct MetricEntry {
 
 /// The YAML text of metrics.yaml (keys as in RunMetrics; accuracy and relations keys:
 /// ate_rmse_m, ate_max_m, heading_rmse_deg, converged_after_s (null if never), truth_matched,
-/// truth_matched_fraction,
+/// truth_matched_fraction, truth_covered_fraction,
 /// relations_trans_m, relations_rot_deg, relations_trans_std_m, relations_rot_std_deg,
 /// relations_used; `complete` and, when there are any, the `warnings` list). `run_figures`
 /// false leaves out the filter's own figures (updates .. beams_used_mean, complete,

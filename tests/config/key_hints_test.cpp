@@ -138,6 +138,69 @@ TEST(KeyHints, InAnExperimentTheKeysNamedAreTheFilesOwn) {
   }
 }
 
+TEST(KeyHints, NearestKeyIsWithinAThirdOfTheKeysLength) {
+  EXPECT_EQ(nearest_key("nme", {"map", "name", "out"}), "name");
+  EXPECT_EQ(nearest_key("partciles", {"particles", "global_particles"}), "particles");  // a swap
+  EXPECT_EQ(nearest_key("xyz", {"name", "map"}), "");
+  EXPECT_EQ(nearest_key("anything", {}), "");
+}
+
+TEST(KeyHints, ExperimentSetSuggestsTheNearestExperimentOrFilterKey) {
+  testkit::TempDir dir("exp_set_hints");
+  std::ofstream(dir.file("m.yaml")) << "image: m.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n";
+  std::ofstream(dir.file("a.log")) << "ODOM 0 0 0 0 0 0 1.0 h 1.0\n";
+  std::ofstream(dir.file("e.yaml")) << "map: m.yaml\ndata: {log: a.log}\n";
+  const auto set_error = [&](const std::string& assignment) -> std::string {
+    try {
+      (void)read_experiment(dir.file("e.yaml"), {assignment});
+    } catch (const UsageError& e) {
+      return e.what();
+    }
+    return "(no error)";
+  };
+  EXPECT_EQ(set_error("nme=x").rfind("--set nme=x: nme: unknown key (did you mean 'name'?); keys "
+                                     "at the top: ",
+                                     0),
+            0u)
+      << set_error("nme=x");
+  EXPECT_NE(set_error("nme=x").find("; experiment keys: name, map, out, init, data.log"),
+            std::string::npos);
+  EXPECT_NE(set_error("data.lgo=a.log").find("(did you mean 'data.log'?)"), std::string::npos);
+  EXPECT_NE(set_error("seeed=3").find("(did you mean 'seed'?)"), std::string::npos);
+  // The filter's own hints stay: an AMCL name gets its pgmcl key, not a guess.
+  const std::string amcl = set_error("alpha1=0.2");
+  EXPECT_NE(amcl.find("AMCL's alpha1 is pgmcl's motion.noise.a1"), std::string::npos) << amcl;
+  EXPECT_EQ(amcl.find("did you mean"), std::string::npos) << amcl;
+}
+
+TEST(KeyHints, ExperimentFilesNameAMisspeltKeyBeforeAMissingOne) {
+  testkit::TempDir dir("exp_file_hints");
+  std::ofstream(dir.file("m.yaml")) << "image: m.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n";
+  std::ofstream(dir.file("a.log")) << "ODOM 0 0 0 0 0 0 1.0 h 1.0\n";
+  const auto file_error = [&](const std::string& text) -> std::string {
+    std::ofstream(dir.file("e.yaml")) << text;
+    try {
+      (void)read_experiment(dir.file("e.yaml"));
+    } catch (const ConfigError& e) {
+      return e.what();
+    }
+    return "(no error)";
+  };
+  EXPECT_EQ(file_error("name: x\nmapp: m.yaml\ndata:\n  log: a.log\n"),
+            dir.file("e.yaml") +
+                ":2: mapp: unknown key (did you mean 'map'?); keys at the top: data, filter, "
+                "init, map, name, out");
+  EXPECT_NE(file_error("map: m.yaml\ndata:\n  lgo: a.log\n")
+                .find(":3: data.lgo: unknown key (did you mean 'log'?)"),
+            std::string::npos);
+  EXPECT_NE(file_error("map: m.yaml\ndata: {log: a.log}\ninit: {pos: [0, 0, 0]}\n")
+                .find("init.pos: unknown key (did you mean 'pose'?)"),
+            std::string::npos);
+  // With nothing misspelt, the missing key is still named.
+  EXPECT_NE(file_error("name: x\ndata:\n  log: a.log\n").find(":1: map: missing required key"),
+            std::string::npos);
+}
+
 TEST(KeyHints, ExperimentPathsThatDoNotExistNameTheKeyAndTheFolder) {
   testkit::TempDir dir("exp_paths");
   std::filesystem::create_directories(dir.path() / "cfg");

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "config_yaml_detail.hpp"
+#include "pgmcl/config/key_hints.hpp"
 #include "pgmcl/io/file_kind.hpp"
 #include "pgmcl/io/values.hpp"
 #include "yaml_reader.hpp"
@@ -52,7 +53,7 @@ ExperimentInit read_init(const std::string& file, const YAML::Node& n, const std
     return init;
   }
   YamlMap m(file, n, field, line);
-  if (!m.pose("pose", init.pose)) m.fail("pose", "missing required key");
+  const bool has_pose = m.pose("pose", init.pose);
   init.kind = ExperimentInit::Kind::kPose;
   if (m.has("sigma")) {
     const auto items = m.sequence("sigma");
@@ -66,7 +67,8 @@ ExperimentInit read_init(const std::string& file, const YAML::Node& n, const std
     init.sigma_y = s[1];
     init.sigma_theta = s[2];
   }
-  m.finish();
+  m.finish();  // a misspelt key is named before the missing one
+  if (!has_pose) m.fail("pose", "missing required key");
   return init;
 }
 
@@ -141,12 +143,8 @@ void read_file(const std::string& path, Experiment& e, PathOrigins& origins) {
     read_path(d, "truth", base, e.truth, origins);
     read_path(d, "relations", base, e.relations, origins);
     d.number("time_offset", e.time_offset);
-    if (e.log.empty() == e.scenario.empty()) {
-      root.fail("data", "needs exactly one of data.log and data.scenario");
-    }
     d.finish();
   }
-  if (e.map.empty() && e.scenario.empty()) root.fail("map", "missing required key");
   e.init = read_init(path, root.take("init"), root.field("init"), root.line("init"));
   const YAML::Node f = root.take("filter");
   if (f && f.IsScalar()) {
@@ -164,7 +162,12 @@ void read_file(const std::string& path, Experiment& e, PathOrigins& origins) {
     detail::read_localizer_node(path, f, "filter", e.filter);
   }
   if (root.text("out", e.out)) e.out = resolve(base, e.out);
+  // Unknown keys first: `mapp:` is a misspelt map, not a missing one.
   root.finish();
+  if (e.log.empty() == e.scenario.empty()) {
+    root.fail("data", "needs exactly one of data.log and data.scenario");
+  }
+  if (e.map.empty() && e.scenario.empty()) root.fail("map", "missing required key");
 }
 
 /// "1,2,3" (x, y, theta) or "1,2,3,0.1,0.1,0.05" (and sigmas), as --init takes them, in
@@ -183,9 +186,34 @@ std::string init_value(const std::string& value) {
   return value;
 }
 
-constexpr const char* kExperimentKeys =
-    "name, map, out, init, data.log, data.scenario, data.truth, data.relations, "
-    "data.time_offset";
+const std::vector<std::string> kExperimentKeys = {"name",
+                                                  "map",
+                                                  "out",
+                                                  "init",
+                                                  "data.log",
+                                                  "data.scenario",
+                                                  "data.truth",
+                                                  "data.relations",
+                                                  "data.time_offset"};
+
+/// The error for a --set key that is neither an experiment key nor a filter key: the
+/// filter's message, with the nearest of either kind of key when it has no hint of its own.
+std::string unknown_set_key(const std::string& key, const ConfigError& filter_error) {
+  std::string message = filter_error.what();
+  const std::string unknown = ": unknown key";
+  const std::size_t at = message.find(unknown);
+  if (at != std::string::npos && message.compare(at + unknown.size(), 1, ";") == 0) {
+    std::vector<std::string> keys = kExperimentKeys;
+    const std::vector<std::string> filter_keys = localizer_config_keys();
+    keys.insert(keys.end(), filter_keys.begin(), filter_keys.end());
+    if (const std::string near = nearest_key(key, keys); !near.empty()) {
+      message.insert(at + unknown.size(), " (did you mean '" + near + "'?)");
+    }
+  }
+  std::string list;
+  for (const std::string& k : kExperimentKeys) list += (list.empty() ? "" : ", ") + k;
+  return message + "; experiment keys: " + list;
+}
 
 void apply_set(const std::string& assignment, Experiment& e, PathOrigins& origins,
                std::vector<std::string>& notes) {
@@ -241,7 +269,7 @@ void apply_set(const std::string& assignment, Experiment& e, PathOrigins& origin
       } catch (const ConfigError&) {
       }
     }
-    throw UsageError(std::string(err.what()) + "; experiment keys: " + kExperimentKeys);
+    throw UsageError(unknown_set_key(key, err));
   }
 }
 

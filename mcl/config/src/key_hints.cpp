@@ -1,5 +1,6 @@
 #include "pgmcl/config/key_hints.hpp"
 
+#include <algorithm>
 #include <array>
 #include <string_view>
 
@@ -117,6 +118,22 @@ KeyCollector collect() {
   return c;
 }
 
+// Optimal string alignment distance: insertions, deletions, substitutions and swaps of
+// neighbours each cost 1.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
+  for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i)
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      d[i][j] = std::min(
+          {d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  return d[a.size()][b.size()];
+}
+
 std::string_view last_component(std::string_view field) {
   const std::size_t dot = field.rfind('.');
   return dot == std::string_view::npos ? field : field.substr(dot + 1);
@@ -183,6 +200,21 @@ std::string localizer_key_hint(const std::string& field, const std::string& pref
     }
   }
   return found.empty() ? std::string() : "pgmcl's key is " + found;
+}
+
+std::string nearest_key(const std::string& key, const std::vector<std::string>& candidates) {
+  // Within a third of the key's length: a suggestion, not a guess.
+  const std::size_t limit = std::max<std::size_t>(1, key.size() / 3);
+  std::string best;
+  std::size_t best_distance = limit + 1;
+  for (const std::string& known : candidates) {
+    const std::size_t d = edit_distance(key, known);
+    if (d < best_distance) {
+      best = known;
+      best_distance = d;
+    }
+  }
+  return best;
 }
 
 }  // namespace pgmcl::io

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "pgmcl/config/key_hints.hpp"
 #include "pgmcl/io/values.hpp"
 
 namespace pgmcl::io::detail {
@@ -21,22 +22,6 @@ std::string describe(const YAML::Node& n) {
 
 std::string join(const std::string& path, const std::string& key) {
   return path.empty() ? key : path + "." + key;
-}
-
-// Optimal string alignment distance: insertions, deletions, substitutions and swaps of
-// neighbours each cost 1, the typos people make in keys.
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
-  for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
-  for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i)
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      d[i][j] = std::min(
-          {d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
-        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-    }
-  return d[a.size()][b.size()];
 }
 
 }  // namespace
@@ -256,18 +241,7 @@ void YamlMap::finish() const {
 }
 
 std::string YamlMap::closest_key(const std::string& key) const {
-  // Within a third of the key's length (at least one edit): a suggestion, not a guess.
-  const std::size_t limit = std::max<std::size_t>(1, key.size() / 3);
-  std::string best;
-  std::size_t best_distance = limit + 1;
-  for (const std::string& known : read_) {
-    const std::size_t d = edit_distance(key, known);
-    if (d < best_distance) {
-      best = known;
-      best_distance = d;
-    }
-  }
-  return best;
+  return nearest_key(key, {read_.begin(), read_.end()});
 }
 
 double yaml_number(const std::string& file, const YAML::Node& n, const std::string& field,

@@ -35,4 +35,10 @@ struct AmclParameter {
 [[nodiscard]] std::string localizer_key_hint(const std::string& field,
                                              const std::string& prefix = "");
 
+/// The candidate nearest `key` in edit distance (insertions, deletions, substitutions and
+/// swaps of neighbours, the typos people make in keys) when within a third of the key's
+/// length (at least one edit), else "": the "did you mean" of every unknown key.
+[[nodiscard]] std::string nearest_key(const std::string& key,
+                                      const std::vector<std::string>& candidates);
+
 }  // namespace pgmcl::io

@@ -25,6 +25,13 @@ io::Trajectory circle(int n) {
   return t;
 }
 
+/// Writes est.tum and truth.tum into `dir` and runs `pgmcl eval` on them into m.yaml.
+RunResult eval_to_yaml(const TempDir& dir, const io::Trajectory& est, const io::Trajectory& truth) {
+  io::write_tum(dir.file("truth.tum"), truth);
+  io::write_tum(dir.file("est.tum"), est);
+  return run_pgmcl("eval --estimate est.tum --truth truth.tum --out m.yaml", dir);
+}
+
 TEST(CliEval, ShiftedEstimateGivesTheShiftAsAteAndZeroRelationsError) {
   TempDir dir("cli_eval_shift");
   const io::Trajectory truth = circle(100);
@@ -92,10 +99,7 @@ TEST(CliEval, APartialMatchWarnsAndReportsTheMatchedFraction) {
   // 100 estimate poses, the last 40 past the truth's end: 60 are scored.
   TempDir dir("cli_eval_partial");
   const io::Trajectory est = circle(100);
-  const io::Trajectory truth(est.begin(), est.begin() + 60);
-  io::write_tum(dir.file("truth.tum"), truth);
-  io::write_tum(dir.file("est.tum"), est);
-  const RunResult r = run_pgmcl("eval --estimate est.tum --truth truth.tum --out m.yaml", dir);
+  const RunResult r = eval_to_yaml(dir, est, io::Trajectory(est.begin(), est.begin() + 60));
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("pgmcl: warning: est.tum: only 60 of 100 estimate poses (60 %) have a "
                        "ground-truth pose"),
@@ -117,10 +121,8 @@ TEST(CliEval, AnEstimateOfPartOfTheTruthWarnsAndReportsTheCoveredFraction) {
   // Every one of the 20 estimate poses matches, but they span 19 of the truth's 99 steps.
   TempDir dir("cli_eval_covered");
   const io::Trajectory truth = circle(100);
-  const io::Trajectory est(truth.begin() + 30, truth.begin() + 50);
-  io::write_tum(dir.file("truth.tum"), truth);
-  io::write_tum(dir.file("est.tum"), est);
-  const RunResult r = run_pgmcl("eval --estimate est.tum --truth truth.tum --out m.yaml", dir);
+  const RunResult r =
+      eval_to_yaml(dir, io::Trajectory(truth.begin() + 30, truth.begin() + 50), truth);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("pgmcl: warning: est.tum: the matched estimate poses cover only 19 % of "
                        "the ground truth's time span (25.000 to 34.500 s of 10.000 to 59.500 s)"),

@@ -96,7 +96,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       cfg.validate();
     } catch (const io::ConfigError&) {
     } catch (const io::UsageError&) {
-      // A malformed "key=value" (no key). Thrown by parse_key_value (cli_errors.hpp); not
+      // A malformed "key=value" (no key). Thrown by parse_key_value (values.hpp); not
       // listed in config_yaml.hpp (reported as a documentation gap).
     } catch (const std::exception& e) {
       fuzz::undocumented(e);

@@ -311,15 +311,15 @@ void bind_runs(py::module_& m) {
       .def_readonly("kidnap_times", &SimulationData::kidnap_times, "Seconds.");
 
   m.def("localize", &localize, py::arg("map"), py::arg("log"), py::arg("init") = py::none(),
-        py::arg("config") = py::none(), py::arg("seed") = py::none(),
-        py::arg("threads") = py::none(), py::arg("truth") = py::none(),
+        py::arg("config") = py::none(), py::arg("seed") = 1, py::arg("threads") = 1,
+        py::arg("truth") = py::none(),
         py::arg("relations") = py::none(), py::arg("time_offset") = 0.0,
         py::arg("init_sigma") = py::none(),
         R"doc(Localises a whole log on a map, as ``pgmcl localize`` (pgmcl::replay), in memory.
 
 ``map``: a Map or map YAML path. ``log``: a Log or CARMEN path. ``config``: a Config, a
-dict of overrides, a filter YAML path or None; ``seed`` and ``threads`` override it when
-given (as --seed, --threads). ``truth``: an (N, 4) array or a TUM / corrected CARMEN path
+dict of overrides, a filter YAML path or None; ``seed`` and ``threads`` (default 1 each)
+override it (as --seed, --threads), None keeps the config's. ``truth``: an (N, 4) array or a TUM / corrected CARMEN path
 (adds the accuracy to the metrics). ``relations``: a benchmark relations file, with
 ``time_offset`` seconds added to the log's stamps (intel: 976052857.338).
 ``init``: (x, y, theta) (with ``init_sigma`` (s_xy, s_theta) or (s_x, s_y, s_theta),

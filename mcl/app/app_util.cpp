@@ -17,6 +17,7 @@
 #include "pgmcl/io/tum.hpp"
 #include "pgmcl/io/values.hpp"
 #include "pgmcl/map_io/map_io.hpp"
+#include "pgmcl/mcl/config_schema.hpp"
 
 namespace pgmcl::app {
 
@@ -194,6 +195,30 @@ CLI::Validator whole_number(std::uint64_t lo, std::uint64_t hi) {
 
 CLI::Option* add_seed_option(CLI::App& sub, std::uint64_t& seed, const std::string& help) {
   return sub.add_option("--seed", seed, help)->check(whole_number());
+}
+
+CLI::Option* add_input_file(CLI::App& sub, const std::string& name, std::string& path,
+                            const std::string& help, const CLI::Validator& kind) {
+  return sub.add_option(name, path, help)->check(CLI::ExistingFile)->check(kind);
+}
+
+CLI::Option* add_threads_option(CLI::App& sub, int& threads, const std::string& help) {
+  return sub.add_option("--threads", threads, help)
+      ->check(whole_number(0, config_schema::kMaxThreads));
+}
+
+FilterOptions add_filter_options(CLI::App& sub, std::string& config,
+                                 std::vector<std::string>& sets) {
+  FilterOptions added;
+  added.config =
+      add_input_file(sub, "--config", config, "Filter configuration YAML", filter_file());
+  added.sets = sub.add_option("--set", sets, "Override a config key, e.g. filter.particles=2000")
+                   ->take_all();
+  return added;
+}
+
+CLI::Option* add_strict_flag(CLI::App& sub, bool& strict) {
+  return sub.add_flag("--strict", strict, "Malformed log lines are errors, not warnings");
 }
 
 std::string threads_warning(int threads) {

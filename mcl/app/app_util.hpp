@@ -57,6 +57,25 @@ namespace pgmcl::app {
 /// A --seed option (any unsigned 64-bit value, checked as whole_number).
 CLI::Option* add_seed_option(CLI::App& sub, std::uint64_t& seed, const std::string& help);
 
+/// An input file option: the file must exist, and then be of a kind `kind` accepts (map_file(),
+/// log_file(), ...), so a missing file is reported as missing rather than as the wrong kind.
+CLI::Option* add_input_file(CLI::App& sub, const std::string& name, std::string& path,
+                            const std::string& help, const CLI::Validator& kind);
+
+/// A --threads option: a whole number in [0, config_schema::kMaxThreads], 0 = OpenMP default.
+CLI::Option* add_threads_option(CLI::App& sub, int& threads, const std::string& help);
+
+/// The filter configuration options of localize and config: --config FILE and --set KEY=VALUE...
+struct FilterOptions {
+  CLI::Option* config = nullptr;
+  CLI::Option* sets = nullptr;
+};
+FilterOptions add_filter_options(CLI::App& sub, std::string& config,
+                                 std::vector<std::string>& sets);
+
+/// --strict, for the commands that read CARMEN logs.
+CLI::Option* add_strict_flag(CLI::App& sub, bool& strict);
+
 /// "threads = N is more than ..." when N is above this machine's core count, else "".
 [[nodiscard]] std::string threads_warning(int threads);
 

@@ -238,76 +238,77 @@ int run_edge(const EdgeOptions& o) {
   return 0;
 }
 
-}  // namespace
+int run_calibrate(const CalibrateOptions& o) {
+  if (o.range_cmd->parsed()) {
+    if (!o.range.simulate && o.range.log.empty()) {
+      throw io::UsageError("calibrate range: give --log LOG or --simulate");
+    }
+    return run_range(o.range);
+  }
+  if (!o.edge.simulate && o.edge.log.empty()) {
+    throw io::UsageError("calibrate edge: give --log LOG or --simulate");
+  }
+  return run_edge(o.edge);
+}
 
-Command add_calibrate_command(CLI::App& app) {
-  auto o = std::make_shared<CalibrateOptions>();
-  CLI::App* sub =
-      app.add_subcommand("calibrate", "Estimate the beam model's sigmas (Dekan et al. Sec. 4)");
-  sub->require_subcommand(1);
+void add_calibrate_options(CLI::App& sub, CalibrateOptions& o) {
+  sub.require_subcommand(1);
 
-  RangeOptions& r = o->range;
-  o->range_cmd = sub->add_subcommand("range", "Along-beam sigma from repeated readings");
-  auto* rlog = o->range_cmd->add_option("--log", r.log, "Log of a stationary scanner")
-                   ->check(CLI::ExistingFile)
-                   ->check(log_file());
-  o->range_cmd->add_option("--beam", r.beam, "Beam index (with --log)")->capture_default_str();
+  RangeOptions& r = o.range;
+  o.range_cmd = sub.add_subcommand("range", "Along-beam sigma from repeated readings");
+  auto* rlog =
+      add_input_file(*o.range_cmd, "--log", r.log, "Log of a stationary scanner", log_file());
+  o.range_cmd->add_option("--beam", r.beam, "Beam index (with --log)")->capture_default_str();
   r.experiments_opt =
-      o->range_cmd
+      o.range_cmd
           ->add_option("--experiments", r.experiments,
                        "Experiments: the log split into this many (default 1), or this many "
                        "simulated (default 20)")
           ->check(CLI::Range(1, 100000));
-  auto* rsim = o->range_cmd->add_flag("--simulate", r.simulate, "Simulate the experiment");
+  auto* rsim = o.range_cmd->add_flag("--simulate", r.simulate, "Simulate the experiment");
   rsim->excludes(rlog);
-  o->range_cmd->add_option("--material", r.sim.material, "Table 2 surface (simulation)")
+  o.range_cmd->add_option("--material", r.sim.material, "Table 2 surface (simulation)")
       ->capture_default_str();
-  o->range_cmd->add_option("--distance", r.sim.distance, "Metres (simulation)")
+  o.range_cmd->add_option("--distance", r.sim.distance, "Metres (simulation)")
       ->capture_default_str()
       ->check(positive());
-  o->range_cmd->add_option("--incidence", r.incidence_deg, "Degrees (simulation)")
+  o.range_cmd->add_option("--incidence", r.incidence_deg, "Degrees (simulation)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 89.0));
-  o->range_cmd->add_option("--readings", r.sim.readings, "Per experiment (simulation)")
+  o.range_cmd->add_option("--readings", r.sim.readings, "Per experiment (simulation)")
       ->capture_default_str()
       ->check(CLI::Range(2, 10000000));
-  add_seed_option(*o->range_cmd, r.sim.seed, "Random seed (simulation)");
+  add_seed_option(*o.range_cmd, r.sim.seed, "Random seed (simulation)");
 
-  EdgeOptions& e = o->edge;
-  o->edge_cmd = sub->add_subcommand("edge", "Across-beam sigma from edge-boundary jitter");
-  auto* elog = o->edge_cmd->add_option("--log", e.log, "Log of a stationary scanner at an edge")
-                   ->check(CLI::ExistingFile)
-                   ->check(log_file());
-  o->edge_cmd->add_option("--first-beam", e.first_beam, "A beam on the object (with --log)");
-  o->edge_cmd->add_option("--split-range", e.split_range,
-                          "Metres: shorter readings are on the object (with --log)");
-  o->edge_cmd->add_option("--distance", e.distance, "Metres to the edge (Eq. 5)")
+  EdgeOptions& e = o.edge;
+  o.edge_cmd = sub.add_subcommand("edge", "Across-beam sigma from edge-boundary jitter");
+  auto* elog = add_input_file(*o.edge_cmd, "--log", e.log, "Log of a stationary scanner at an edge",
+                              log_file());
+  o.edge_cmd->add_option("--first-beam", e.first_beam, "A beam on the object (with --log)");
+  o.edge_cmd->add_option("--split-range", e.split_range,
+                         "Metres: shorter readings are on the object (with --log)");
+  o.edge_cmd->add_option("--distance", e.distance, "Metres to the edge (Eq. 5)")
       ->capture_default_str()
       ->check(positive());
-  o->edge_cmd
+  o.edge_cmd
       ->add_option("--edge-fraction", e.edge_fraction,
                    "Edge position past the last sure beam, in steps [0, 1)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 0.999));
-  auto* esim = o->edge_cmd->add_flag("--simulate", e.simulate, "Simulate the experiment");
+  auto* esim = o.edge_cmd->add_flag("--simulate", e.simulate, "Simulate the experiment");
   esim->excludes(elog);
-  o->edge_cmd->add_option("--runs", e.sim.runs, "Runs (simulation)")->capture_default_str();
-  o->edge_cmd->add_option("--scans", e.sim.scans, "Scans per run (simulation)")
+  o.edge_cmd->add_option("--runs", e.sim.runs, "Runs (simulation)")->capture_default_str();
+  o.edge_cmd->add_option("--scans", e.sim.scans, "Scans per run (simulation)")
       ->capture_default_str();
-  add_seed_option(*o->edge_cmd, e.sim.seed, "Random seed (simulation)");
+  add_seed_option(*o.edge_cmd, e.sim.seed, "Random seed (simulation)");
+}
 
-  return {sub, [o]() -> int {
-            if (o->range_cmd->parsed()) {
-              if (!o->range.simulate && o->range.log.empty()) {
-                throw io::UsageError("calibrate range: give --log LOG or --simulate");
-              }
-              return run_range(o->range);
-            }
-            if (!o->edge.simulate && o->edge.log.empty()) {
-              throw io::UsageError("calibrate edge: give --log LOG or --simulate");
-            }
-            return run_edge(o->edge);
-          }};
+}  // namespace
+
+Command add_calibrate_command(CLI::App& app) {
+  return make_command<CalibrateOptions>(app, "calibrate",
+                                        "Estimate the beam model's sigmas (Dekan et al. Sec. 4)",
+                                        add_calibrate_options, run_calibrate);
 }
 
 }  // namespace pgmcl::app

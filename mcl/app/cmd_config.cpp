@@ -39,26 +39,25 @@ int run_config(const ConfigOptions& o) {
   return 0;
 }
 
+void add_config_options(CLI::App& sub, ConfigOptions& o) {
+  const FilterOptions filter = add_filter_options(sub, o.config, o.sets);
+  auto* ref = sub.add_flag("--reference", o.reference,
+                           "Print every key with its default, unit and allowed values (Markdown)");
+  ref->excludes(filter.config)->excludes(filter.sets);
+  sub.add_flag("--amcl", o.amcl,
+               "Print the table of AMCL (nav2_amcl, ROS 1 amcl) parameters and their pgmcl keys")
+      ->excludes(ref)
+      ->excludes(filter.config)
+      ->excludes(filter.sets);
+}
+
 }  // namespace
 
 Command add_config_command(CLI::App& app) {
-  auto o = std::make_shared<ConfigOptions>();
-  CLI::App* sub = app.add_subcommand(
-      "config", "Print the filter configuration after --config and --set, or the key reference");
-  sub->add_option("--config", o->config, "Filter configuration YAML")
-      ->check(CLI::ExistingFile)
-      ->check(filter_file());
-  sub->add_option("--set", o->sets, "Override a config key, e.g. filter.particles=2000")
-      ->take_all();
-  auto* ref = sub->add_flag("--reference", o->reference,
-                            "Print every key with its default, unit and allowed values (Markdown)");
-  ref->excludes(sub->get_option("--config"))->excludes(sub->get_option("--set"));
-  sub->add_flag("--amcl", o->amcl,
-                "Print the table of AMCL (nav2_amcl, ROS 1 amcl) parameters and their pgmcl keys")
-      ->excludes(ref)
-      ->excludes(sub->get_option("--config"))
-      ->excludes(sub->get_option("--set"));
-  return {sub, [o] { return run_config(*o); }};
+  return make_command<ConfigOptions>(
+      app, "config",
+      "Print the filter configuration after --config and --set, or the key reference",
+      add_config_options, run_config);
 }
 
 }  // namespace pgmcl::app

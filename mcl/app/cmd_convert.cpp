@@ -73,23 +73,25 @@ int run_convert(const ConvertOptions& o) {
 #endif
 }
 
+void add_convert_options(CLI::App& sub, ConvertOptions& o) {
+  sub.add_option("--log", o.in, "Input: a CARMEN log (.log, .clf, optionally .gz) or a .bag")
+      ->required()
+      ->check(CLI::ExistingFile);
+  sub.add_option("--out", o.out, "Output: a .bag, or a CARMEN log for a bag input")->required();
+  add_bag_input_options(sub, o.bag, nullptr);
+  sub.add_option("--laser-frame", o.laser_frame, "Laser frame (written bags)")
+      ->capture_default_str();
+  sub.add_option("--time-offset", o.time_offset,
+                 "Seconds added to every stamp of a written bag (ROS time must be > 0)");
+  add_strict_flag(sub, o.strict);
+}
+
 }  // namespace
 
 Command add_convert_command(CLI::App& app) {
-  auto o = std::make_shared<ConvertOptions>();
-  CLI::App* sub = app.add_subcommand(
-      "convert", "Write a CARMEN log as a ROS 1 bag (/scan, /tf, /tf_static, /odom), or back");
-  sub->add_option("--log", o->in, "Input: a CARMEN log (.log, .clf, optionally .gz) or a .bag")
-      ->required()
-      ->check(CLI::ExistingFile);
-  sub->add_option("--out", o->out, "Output: a .bag, or a CARMEN log for a bag input")->required();
-  add_bag_input_options(*sub, o->bag, nullptr);
-  sub->add_option("--laser-frame", o->laser_frame, "Laser frame (written bags)")
-      ->capture_default_str();
-  sub->add_option("--time-offset", o->time_offset,
-                  "Seconds added to every stamp of a written bag (ROS time must be > 0)");
-  sub->add_flag("--strict", o->strict, "Malformed log lines are errors, not warnings");
-  return {sub, [o] { return run_convert(*o); }};
+  return make_command<ConvertOptions>(
+      app, "convert", "Write a CARMEN log as a ROS 1 bag (/scan, /tf, /tf_static, /odom), or back",
+      add_convert_options, run_convert);
 }
 
 }  // namespace pgmcl::app

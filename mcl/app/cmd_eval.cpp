@@ -102,44 +102,42 @@ int run_eval(EvalOptions o) {
   return 0;
 }
 
+void add_eval_options(CLI::App& sub, EvalOptions& o) {
+  add_input_file(sub, "--estimate", o.estimate, "Estimated trajectory (TUM)",
+                 trajectory_file(false))
+      ->required();
+  add_input_file(sub, "--truth", o.truth, "Ground truth: TUM file or a corrected CARMEN log",
+                 trajectory_file(true))
+      ->required();
+  add_input_file(sub, "--relations", o.relations, "Benchmark relations file", relations_file());
+  o.time_offset_opt =
+      sub.add_option("--time-offset", o.time_offset,
+                     "Seconds added to the estimate's stamps: to match the relations with "
+                     "--relations, else to match the truth");
+  o.truth_offset_opt = sub.add_option("--truth-offset", o.ate.time_offset,
+                                      "Seconds added to the estimate's stamps to match the "
+                                      "truth (with --relations too)");
+  sub.add_option("--tolerance", o.ate.tolerance,
+                 "Seconds: a truth pose this close in time matches where the truth cannot be "
+                 "interpolated (gaps over 1 s, its ends)")
+      ->capture_default_str()
+      ->check(non_negative());
+  sub.add_option("--converged-m", o.ate.converged_translation,
+                 "Converged once the position error stays below this (metres)")
+      ->capture_default_str()
+      ->check(positive());
+  sub.add_option("--converged-deg", o.ate.converged_rotation_deg,
+                 "... and the heading error below this (degrees)")
+      ->capture_default_str()
+      ->check(positive());
+  sub.add_option("--out", o.out, "Write the figures as YAML here");
+}
+
 }  // namespace
 
 Command add_eval_command(CLI::App& app) {
-  auto o = std::make_shared<EvalOptions>();
-  CLI::App* sub = app.add_subcommand("eval", "Evaluate an estimated trajectory");
-  sub->add_option("--estimate", o->estimate, "Estimated trajectory (TUM)")
-      ->required()
-      ->check(CLI::ExistingFile)
-      ->check(trajectory_file(false));
-  sub->add_option("--truth", o->truth, "Ground truth: TUM file or a corrected CARMEN log")
-      ->required()
-      ->check(CLI::ExistingFile)
-      ->check(trajectory_file(true));
-  sub->add_option("--relations", o->relations, "Benchmark relations file")
-      ->check(CLI::ExistingFile)
-      ->check(relations_file());
-  o->time_offset_opt =
-      sub->add_option("--time-offset", o->time_offset,
-                      "Seconds added to the estimate's stamps: to match the relations with "
-                      "--relations, else to match the truth");
-  o->truth_offset_opt = sub->add_option("--truth-offset", o->ate.time_offset,
-                                        "Seconds added to the estimate's stamps to match the "
-                                        "truth (with --relations too)");
-  sub->add_option("--tolerance", o->ate.tolerance,
-                  "Seconds: a truth pose this close in time matches where the truth cannot be "
-                  "interpolated (gaps over 1 s, its ends)")
-      ->capture_default_str()
-      ->check(non_negative());
-  sub->add_option("--converged-m", o->ate.converged_translation,
-                  "Converged once the position error stays below this (metres)")
-      ->capture_default_str()
-      ->check(positive());
-  sub->add_option("--converged-deg", o->ate.converged_rotation_deg,
-                  "... and the heading error below this (degrees)")
-      ->capture_default_str()
-      ->check(positive());
-  sub->add_option("--out", o->out, "Write the figures as YAML here");
-  return {sub, [o] { return run_eval(*o); }};
+  return make_command<EvalOptions>(app, "eval", "Evaluate an estimated trajectory",
+                                   add_eval_options, run_eval);
 }
 
 }  // namespace pgmcl::app

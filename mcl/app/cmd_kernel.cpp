@@ -64,38 +64,37 @@ int run_kernel(const KernelOptions& o) {
   return 0;
 }
 
+void add_kernel_options(CLI::App& sub, KernelOptions& o) {
+  // Millimetres, as Dekan et al.'s tables; a unit may be given ("0.05m" is 50 mm). Sigmas up
+  // to 10 m, the filter's bound on a sigma (config_schema::kSigma); cells from 1 µm to 1 km.
+  const auto millimetres = [&sub](const std::string& name, double& value, const std::string& help,
+                                  double min, double max) {
+    sub.add_option(name, value, help)
+        ->capture_default_str()
+        ->transform(length_in("mm"))
+        ->check(positive() & CLI::Range(min, max))
+        ->type_name("MM");
+  };
+  millimetres("--sigma-x", o.sigma_x_mm, "Sigma along the beam, mm (or with a unit: 5.7mm)", 0.0,
+              1e4);
+  millimetres("--sigma-y", o.sigma_y_mm, "Sigma across the beam, mm (or with a unit)", 0.0, 1e4);
+  millimetres("--cell", o.cell_mm,
+              "Cell size, mm (or with a unit: 0.05m is pgmcl map --resolution 0.05)", 1e-3, 1e6);
+  sub.add_option("--angle", o.angle_deg, "Beam angle in the map frame, degrees")
+      ->capture_default_str();
+  sub.add_option("--radius", o.radius, "Table radius in cells ((2r+1)^2 cells)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 50));
+  sub.add_flag("--integrated", o.integrated,
+               "Integrate Eq. (6) over each cell instead of sampling it at cell centres");
+}
+
 }  // namespace
 
 Command add_kernel_command(CLI::App& app) {
-  auto o = std::make_shared<KernelOptions>();
-  CLI::App* sub = app.add_subcommand(
-      "kernel", "Print the tabular beam model (Dekan et al., Table 5) for given sigmas");
-  // Millimetres, as Dekan et al.'s tables; a unit may be given ("0.05m" is 50 mm). Sigmas up
-  // to 10 m, the filter's bound on a sigma (config_schema::kSigma); cells from 1 µm to 1 km.
-  sub->add_option("--sigma-x", o->sigma_x_mm, "Sigma along the beam, mm (or with a unit: 5.7mm)")
-      ->capture_default_str()
-      ->transform(length_in("mm"))
-      ->check(positive() & CLI::Range(0.0, 1e4))
-      ->type_name("MM");
-  sub->add_option("--sigma-y", o->sigma_y_mm, "Sigma across the beam, mm (or with a unit)")
-      ->capture_default_str()
-      ->transform(length_in("mm"))
-      ->check(positive() & CLI::Range(0.0, 1e4))
-      ->type_name("MM");
-  sub->add_option("--cell", o->cell_mm,
-                  "Cell size, mm (or with a unit: 0.05m is pgmcl map --resolution 0.05)")
-      ->capture_default_str()
-      ->transform(length_in("mm"))
-      ->check(positive() & CLI::Range(1e-3, 1e6))
-      ->type_name("MM");
-  sub->add_option("--angle", o->angle_deg, "Beam angle in the map frame, degrees")
-      ->capture_default_str();
-  sub->add_option("--radius", o->radius, "Table radius in cells ((2r+1)^2 cells)")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 50));
-  sub->add_flag("--integrated", o->integrated,
-                "Integrate Eq. (6) over each cell instead of sampling it at cell centres");
-  return {sub, [o] { return run_kernel(*o); }};
+  return make_command<KernelOptions>(
+      app, "kernel", "Print the tabular beam model (Dekan et al., Table 5) for given sigmas",
+      add_kernel_options, run_kernel);
 }
 
 }  // namespace pgmcl::app

@@ -21,7 +21,6 @@
 #include "pgmcl/io/relations.hpp"
 #include "pgmcl/io/values.hpp"
 #include "pgmcl/map_io/map_io.hpp"
-#include "pgmcl/mcl/config_schema.hpp"
 
 namespace pgmcl::app {
 namespace {
@@ -99,47 +98,38 @@ int run_localize(const LocalizeOptions& o) {
   return finish_exit_code(m, o.out);
 }
 
+void add_localize_options(CLI::App& sub, LocalizeOptions& o) {
+  add_input_file(sub, "--map", o.map, "Map YAML (ROS map_server)", map_file())->required();
+  auto* log =
+      add_input_file(sub, "--log", o.log, "CARMEN log (.log, .clf, optionally .gz)", log_file());
+  auto* bag = sub.add_option("--bag", o.bag, "ROS 1 bag (instead of --log)")
+                  ->check(CLI::ExistingFile)
+                  ->excludes(log);
+  add_bag_input_options(sub, o.bag_input, bag);
+  add_filter_options(sub, o.config, o.sets);
+  o.init_opt =
+      sub.add_option("--init", o.init, "Initial pose X,Y,THETA[,SX,SY,STH] (metres, radians)");
+  auto* global = sub.add_flag("--global", o.global, "Start with global localisation");
+  o.init_opt->excludes(global);
+  add_input_file(sub, "--truth", o.truth, "Ground truth: TUM file or a corrected CARMEN log",
+                 trajectory_file(true));
+  auto* rel =
+      add_input_file(sub, "--relations", o.relations, "Benchmark relations file", relations_file());
+  sub.add_option("--time-offset", o.time_offset,
+                 "Seconds added to log stamps to match the relations")
+      ->needs(rel);
+  o.threads_opt = add_threads_option(sub, o.threads, "OpenMP threads (0 = OpenMP default)");
+  o.seed_opt = add_seed_option(sub, o.seed, "Random seed");
+  sub.add_option("--out", o.out, "Output directory")->capture_default_str();
+  add_strict_flag(sub, o.strict);
+  sub.add_flag("--quiet", o.quiet, "No progress output");
+}
+
 }  // namespace
 
 Command add_localize_command(CLI::App& app) {
-  auto o = std::make_shared<LocalizeOptions>();
-  CLI::App* sub = app.add_subcommand("localize", "Localise a logged robot on a map");
-  sub->add_option("--map", o->map, "Map YAML (ROS map_server)")
-      ->required()
-      ->check(CLI::ExistingFile)
-      ->check(map_file());
-  auto* log = sub->add_option("--log", o->log, "CARMEN log (.log, .clf, optionally .gz)")
-                  ->check(CLI::ExistingFile)
-                  ->check(log_file());
-  auto* bag = sub->add_option("--bag", o->bag, "ROS 1 bag (instead of --log)")
-                  ->check(CLI::ExistingFile)
-                  ->excludes(log);
-  add_bag_input_options(*sub, o->bag_input, bag);
-  sub->add_option("--config", o->config, "Filter configuration YAML")
-      ->check(CLI::ExistingFile)
-      ->check(filter_file());
-  sub->add_option("--set", o->sets, "Override a config key, e.g. filter.particles=2000")
-      ->take_all();
-  o->init_opt =
-      sub->add_option("--init", o->init, "Initial pose X,Y,THETA[,SX,SY,STH] (metres, radians)");
-  auto* global = sub->add_flag("--global", o->global, "Start with global localisation");
-  o->init_opt->excludes(global);
-  sub->add_option("--truth", o->truth, "Ground truth: TUM file or a corrected CARMEN log")
-      ->check(CLI::ExistingFile)
-      ->check(trajectory_file(true));
-  auto* rel = sub->add_option("--relations", o->relations, "Benchmark relations file")
-                  ->check(CLI::ExistingFile)
-                  ->check(relations_file());
-  sub->add_option("--time-offset", o->time_offset,
-                  "Seconds added to log stamps to match the relations")
-      ->needs(rel);
-  o->threads_opt = sub->add_option("--threads", o->threads, "OpenMP threads (0 = OpenMP default)")
-                       ->check(whole_number(0, config_schema::kMaxThreads));
-  o->seed_opt = add_seed_option(*sub, o->seed, "Random seed");
-  sub->add_option("--out", o->out, "Output directory")->capture_default_str();
-  sub->add_flag("--strict", o->strict, "Malformed log lines are errors, not warnings");
-  sub->add_flag("--quiet", o->quiet, "No progress output");
-  return {sub, [o] { return run_localize(*o); }};
+  return make_command<LocalizeOptions>(app, "localize", "Localise a logged robot on a map",
+                                       add_localize_options, run_localize);
 }
 
 }  // namespace pgmcl::app

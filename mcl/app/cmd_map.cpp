@@ -153,43 +153,42 @@ int run_map(const MapOptions& o) {
   return 0;
 }
 
-}  // namespace
-
-Command add_map_command(CLI::App& app) {
-  auto o = std::make_shared<MapOptions>();
-  CLI::App* sub =
-      app.add_subcommand("map", "Build an occupancy map from a log with known (corrected) poses");
-  sub->add_option("--log", o->log, "Corrected CARMEN log (.gz ok)")
-      ->required()
-      ->check(CLI::ExistingFile)
-      ->check(log_file());
-  sub->add_option("--out", o->out, "Output map YAML (the image is written next to it)")->required();
-  sub->add_option("--image", o->image,
-                  "Image file name next to the YAML (.pgm, .pgm.gz or .png; default <stem>.pgm)");
-  auto& m = o->mapping;
-  sub->add_option("--resolution", m.resolution, "Metres per cell (or with a unit: 5cm, 50mm)")
+void add_map_options(CLI::App& sub, MapOptions& o) {
+  add_input_file(sub, "--log", o.log, "Corrected CARMEN log (.gz ok)", log_file())->required();
+  sub.add_option("--out", o.out, "Output map YAML (the image is written next to it)")->required();
+  sub.add_option("--image", o.image,
+                 "Image file name next to the YAML (.pgm, .pgm.gz or .png; default <stem>.pgm)");
+  auto& m = o.mapping;
+  sub.add_option("--resolution", m.resolution, "Metres per cell (or with a unit: 5cm, 50mm)")
       ->capture_default_str()
       ->transform(length_in("m"))
       ->check(positive())
       ->type_name("M");
-  sub->add_option("--margin", m.margin, "Metres of border around the data")
+  sub.add_option("--margin", m.margin, "Metres of border around the data")
       ->capture_default_str()
       ->check(non_negative());
-  sub->add_option("--max-range", o->max_range,
-                  "Readings at or beyond this (metres) mean 'no return'; 0 = the log's "
-                  "PARAM or its largest reading")
+  sub.add_option("--max-range", o.max_range,
+                 "Readings at or beyond this (metres) mean 'no return'; 0 = the log's "
+                 "PARAM or its largest reading")
       ->capture_default_str()
       ->check(non_negative());
-  sub->add_option("--clear-range", m.no_return_clear_range,
-                  "Metres of free space cleared along a 'no return' beam")
+  sub.add_option("--clear-range", m.no_return_clear_range,
+                 "Metres of free space cleared along a 'no return' beam")
       ->capture_default_str()
       ->check(non_negative());
-  sub->add_option("--max-hit-range", m.max_hit_range,
-                  "Longer returns are treated as 'no return' (metres)")
+  sub.add_option("--max-hit-range", m.max_hit_range,
+                 "Longer returns are treated as 'no return' (metres)")
       ->check(positive());
-  sub->add_flag("--strict", o->strict, "Malformed log lines are errors, not warnings");
-  sub->add_flag("--quiet", o->quiet, "No summary line");
-  return {sub, [o] { return run_map(*o); }};
+  add_strict_flag(sub, o.strict);
+  sub.add_flag("--quiet", o.quiet, "No summary line");
+}
+
+}  // namespace
+
+Command add_map_command(CLI::App& app) {
+  return make_command<MapOptions>(app, "map",
+                                  "Build an occupancy map from a log with known (corrected) poses",
+                                  add_map_options, run_map);
 }
 
 }  // namespace pgmcl::app

@@ -228,71 +228,70 @@ int run_perturb(const PerturbOptions& o) {
   return 0;
 }
 
-}  // namespace
-
-Command add_perturb_command(CLI::App& app) {
-  auto o = std::make_shared<PerturbOptions>();
-  CLI::App* sub = app.add_subcommand(
-      "perturb", "Make a raw log with noisy odometry (and stress conditions) from a corrected log");
-  sub->add_option("--log", o->log, "Corrected CARMEN log")
-      ->required()
-      ->check(CLI::ExistingFile)
-      ->check(log_file());
-  sub->add_option("--odom-noise", o->text.noise,
-                  "A1,A2,A3,A4: Probabilistic Robotics Table 5.6 alphas, variance form "
-                  "(rad^2/rad^2, rad^2/m^2, m^2/m^2, m^2/rad^2)")
+void add_perturb_options(CLI::App& sub, PerturbOptions& o) {
+  add_input_file(sub, "--log", o.log, "Corrected CARMEN log", log_file())->required();
+  sub.add_option("--odom-noise", o.text.noise,
+                 "A1,A2,A3,A4: Probabilistic Robotics Table 5.6 alphas, variance form "
+                 "(rad^2/rad^2, rad^2/m^2, m^2/m^2, m^2/rad^2)")
       ->required();
-  add_seed_option(*sub, o->seed, "Random seed (every random choice derives from it)")->required();
-  sub->add_option("--out", o->out, "Output raw CARMEN log (.gz ok)")->required();
-  CLI::Option* truth =
-      sub->add_option("--truth-out", o->truth, "Output ground truth (TUM), required")
-          ->type_name("FILE");
-  o->truth_name = DeprecatedName(*sub, truth, "--truth", o->truth);
+  add_seed_option(sub, o.seed, "Random seed (every random choice derives from it)")->required();
+  sub.add_option("--out", o.out, "Output raw CARMEN log (.gz ok)")->required();
+  CLI::Option* truth = sub.add_option("--truth-out", o.truth, "Output ground truth (TUM), required")
+                           ->type_name("FILE");
+  o.truth_name = DeprecatedName(sub, truth, "--truth", o.truth);
   CLI::Option* scale =
-      sub->add_option("--scale-bias", o->text.scale_bias,
-                      "Systematic translation scale error F (0.015 = odometry reads 1.5 % long)")
+      sub.add_option("--scale-bias", o.text.scale_bias,
+                     "Systematic translation scale error F (0.015 = odometry reads 1.5 % long)")
           ->type_name("F")
           ->capture_default_str();
-  o->scale_name = DeprecatedName(*sub, scale, "--bias-scale", o->text.scale_bias);
-  CLI::Option* yaw = sub->add_option("--yaw-drift", o->text.yaw_drift,
-                                     "Systematic heading drift, degrees per metre travelled")
+  o.scale_name = DeprecatedName(sub, scale, "--bias-scale", o.text.scale_bias);
+  CLI::Option* yaw = sub.add_option("--yaw-drift", o.text.yaw_drift,
+                                    "Systematic heading drift, degrees per metre travelled")
                          ->type_name("DEG_PER_M")
                          ->capture_default_str();
-  o->yaw_name = DeprecatedName(*sub, yaw, "--bias-yaw-deg-per-m", o->text.yaw_drift);
+  o.yaw_name = DeprecatedName(sub, yaw, "--bias-yaw-deg-per-m", o.text.yaw_drift);
   // Conditions: recorded in the output log's header when given.
   const auto condition = [&](const std::string& name, std::string& value, const std::string& help,
                              const std::string& type) {
-    o->conditions.emplace_back(sub->add_option(name, value, help)->type_name(type), &value);
+    o.conditions.emplace_back(sub.add_option(name, value, help)->type_name(type), &value);
   };
-  condition("--odom-model", o->text.odom_model,
+  condition("--odom-model", o.text.odom_model,
             "pgmcl (default: sample_noisy_increment) or textbook (Table 5.6 literally: no "
             "backward-motion flip, no small-translation fade)",
             "pgmcl|textbook");
-  condition("--glitch", o->text.glitch,
+  condition("--glitch", o.text.glitch,
             "Heading glitches: each step with probability RATE gets a heading error of "
             "[0.8, 1] * DEG degrees, random sign, at the start of the step",
             "RATE,DEG");
-  condition("--translation-glitch", o->text.translation_glitch,
+  condition("--translation-glitch", o.text.translation_glitch,
             "Translation glitches: each step with probability RATE gets M metres extra in a "
             "random direction",
             "RATE,M");
-  condition("--min-scan-gap", o->text.min_scan_gap,
+  condition("--min-scan-gap", o.text.min_scan_gap,
             "Keep a scan only if S seconds of log time passed since the last kept one", "S");
-  condition("--min-scan-travel", o->text.min_scan_travel,
+  condition("--min-scan-travel", o.text.min_scan_travel,
             "Keep a scan only once the true pose moved M metres (or turned DEG degrees) since "
             "the last kept one",
             "M[,DEG]");
-  condition("--laser-offset", o->text.laser_offset,
+  condition("--laser-offset", o.text.laser_offset,
             "The logged poses are the laser's; the robot base is X metres behind it (truth = "
             "base; PARAM robot_frontlaser_offset X)",
             "X");
-  condition("--beam-dropout", o->text.beam_dropout,
+  condition("--beam-dropout", o.text.beam_dropout,
             "Per scan, FRACTION of the beams in SECTORS (3) random contiguous sectors read "
             "'no return'",
             "FRACTION[,SECTORS]");
-  sub->add_flag("--strict", o->strict, "Malformed log lines are errors, not warnings");
-  sub->add_flag("--quiet", o->quiet, "No summary line");
-  return {sub, [o] { return run_perturb(*o); }};
+  add_strict_flag(sub, o.strict);
+  sub.add_flag("--quiet", o.quiet, "No summary line");
+}
+
+}  // namespace
+
+Command add_perturb_command(CLI::App& app) {
+  return make_command<PerturbOptions>(
+      app, "perturb",
+      "Make a raw log with noisy odometry (and stress conditions) from a corrected log",
+      add_perturb_options, run_perturb);
 }
 
 }  // namespace pgmcl::app

@@ -171,33 +171,32 @@ int run_perturb_map(const PerturbMapOptions& o) {
   return 0;
 }
 
+void add_perturb_map_options(CLI::App& sub, PerturbMapOptions& o) {
+  add_input_file(sub, "--map", o.map, "Input ROS map YAML", map_file())->required();
+  sub.add_option("--out", o.out,
+                 "Output map YAML; the image goes next to it (<stem>.pgm, or <stem>.png for "
+                 "a scale map)")
+      ->required();
+  sub.add_option("--blur", o.blur,
+                 "Gaussian blur of the occupancy probability over the known cells, sigma in "
+                 "cells (written as a mode: scale map)")
+      ->type_name("SIGMA_CELLS");
+  sub.add_option("--thicken", o.thicken, "Dilate the walls by CELLS cells (before --blur)")
+      ->type_name("CELLS");
+  sub.add_option("--erase", o.erase,
+                 "Tile the map into BLOCK_M x BLOCK_M blocks and free the occupied cells of a "
+                 "random FRACTION of the blocks holding walls (before --thicken)")
+      ->type_name("FRACTION,BLOCK_M");
+  add_seed_option(sub, o.seed, "Random seed (--erase)")->capture_default_str();
+  sub.add_flag("--quiet", o.quiet, "No summary line");
+}
+
 }  // namespace
 
 Command add_perturb_map_command(CLI::App& app) {
-  auto o = std::make_shared<PerturbMapOptions>();
-  CLI::App* sub = app.add_subcommand(
-      "perturb-map", "Make a degraded copy of a map (blurred, thickened or missing walls)");
-  sub->add_option("--map", o->map, "Input ROS map YAML")
-      ->required()
-      ->check(CLI::ExistingFile)
-      ->check(map_file());
-  sub->add_option("--out", o->out,
-                  "Output map YAML; the image goes next to it (<stem>.pgm, or <stem>.png for "
-                  "a scale map)")
-      ->required();
-  sub->add_option("--blur", o->blur,
-                  "Gaussian blur of the occupancy probability over the known cells, sigma in "
-                  "cells (written as a mode: scale map)")
-      ->type_name("SIGMA_CELLS");
-  sub->add_option("--thicken", o->thicken, "Dilate the walls by CELLS cells (before --blur)")
-      ->type_name("CELLS");
-  sub->add_option("--erase", o->erase,
-                  "Tile the map into BLOCK_M x BLOCK_M blocks and free the occupied cells of a "
-                  "random FRACTION of the blocks holding walls (before --thicken)")
-      ->type_name("FRACTION,BLOCK_M");
-  add_seed_option(*sub, o->seed, "Random seed (--erase)")->capture_default_str();
-  sub->add_flag("--quiet", o->quiet, "No summary line");
-  return {sub, [o] { return run_perturb_map(*o); }};
+  return make_command<PerturbMapOptions>(
+      app, "perturb-map", "Make a degraded copy of a map (blurred, thickened or missing walls)",
+      add_perturb_map_options, run_perturb_map);
 }
 
 }  // namespace pgmcl::app

@@ -21,7 +21,6 @@
 #include "pgmcl/io/tum.hpp"
 #include "pgmcl/io/values.hpp"
 #include "pgmcl/map_io/map_io.hpp"
-#include "pgmcl/mcl/config_schema.hpp"
 #include "pgmcl/sims/scenario.hpp"
 
 namespace pgmcl::app {
@@ -167,26 +166,26 @@ int run_run(const RunOptions& o) {
   return finish_exit_code(m, e.out);
 }
 
+void add_run_options(CLI::App& sub, RunOptions& o) {
+  add_input_file(sub, "experiment", o.experiment, "Experiment YAML",
+                 file_kind({io::FileKind::kExperiment, io::FileKind::kOtherYaml},
+                           "an experiment file (map + data + filter; configs/experiments/)"))
+      ->required();
+  sub.add_option("--out", o.out, "Output directory (default: the experiment's `out`)");
+  sub.add_option("--set", o.sets,
+                 "Override a key: a filter key as in localize (filter.particles=500), or name, "
+                 "map, out, init (x,y,theta[,sx,sy,stheta] or YAML), data.*")
+      ->take_all();
+  o.threads_opt = add_threads_option(sub, o.threads, "OpenMP threads (0 = OpenMP default)");
+  o.seed_opt = add_seed_option(sub, o.seed, "Random seed of the filter");
+  sub.add_flag("--quiet", o.quiet, "No progress output");
+}
+
 }  // namespace
 
 Command add_run_command(CLI::App& app) {
-  auto o = std::make_shared<RunOptions>();
-  CLI::App* sub = app.add_subcommand("run", "Run an experiment file (map + data + filter)");
-  sub->add_option("experiment", o->experiment, "Experiment YAML")
-      ->required()
-      ->check(CLI::ExistingFile)
-      ->check(file_kind({io::FileKind::kExperiment, io::FileKind::kOtherYaml},
-                        "an experiment file (map + data + filter; configs/experiments/)"));
-  sub->add_option("--out", o->out, "Output directory (default: the experiment's `out`)");
-  sub->add_option("--set", o->sets,
-                  "Override a key: a filter key as in localize (filter.particles=500), or name, "
-                  "map, out, init (x,y,theta[,sx,sy,stheta] or YAML), data.*")
-      ->take_all();
-  o->threads_opt = sub->add_option("--threads", o->threads, "OpenMP threads (0 = OpenMP default)")
-                       ->check(whole_number(0, config_schema::kMaxThreads));
-  o->seed_opt = add_seed_option(*sub, o->seed, "Random seed of the filter");
-  sub->add_flag("--quiet", o->quiet, "No progress output");
-  return {sub, [o] { return run_run(*o); }};
+  return make_command<RunOptions>(app, "run", "Run an experiment file (map + data + filter)",
+                                  add_run_options, run_run);
 }
 
 }  // namespace pgmcl::app

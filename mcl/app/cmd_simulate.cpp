@@ -16,7 +16,6 @@
 #include "output_files.hpp"
 #include "pgmcl/config/scenario_yaml.hpp"
 #include "pgmcl/io/sim_log_io.hpp"
-#include "pgmcl/mcl/config_schema.hpp"
 #include "pgmcl/sims/scenario.hpp"
 
 namespace pgmcl::app {
@@ -79,31 +78,31 @@ int run_simulate(const SimulateOptions& o) {
   return 0;
 }
 
+void add_simulate_options(CLI::App& sub, SimulateOptions& o) {
+  add_input_file(sub, "scenario", o.scenario, "Scenario YAML (configs/scenarios/)",
+                 file_kind({io::FileKind::kScenario, io::FileKind::kOtherYaml},
+                           "a scenario (configs/scenarios/)"))
+      ->required();
+  sub.add_option("--out", o.out, "Output CARMEN log (.gz ok)")->required();
+  auto* truth = sub.add_option("--truth-out", o.truth, "Also write the true trajectory (TUM)")
+                    ->type_name("FILE");
+  o.truth_name = DeprecatedName(sub, truth, "--truth", o.truth);
+  sub.add_option("--set", o.sets,
+                 "Override a scenario key, e.g. duration=20 or robot.start=[1,2,0] (value read "
+                 "as YAML)")
+      ->take_all();
+  o.seed_opt = add_seed_option(sub, o.seed, "Random seed (the scenario's seed: key)");
+  add_threads_option(sub, o.threads,
+                     "OpenMP threads (0 = OpenMP default); the log is the same for any count")
+      ->capture_default_str();
+  sub.add_flag("--quiet", o.quiet, "No summary line");
+}
+
 }  // namespace
 
 Command add_simulate_command(CLI::App& app) {
-  auto o = std::make_shared<SimulateOptions>();
-  CLI::App* sub = app.add_subcommand("simulate", "Simulate a scenario into a CARMEN log");
-  sub->add_option("scenario", o->scenario, "Scenario YAML (configs/scenarios/)")
-      ->required()
-      ->check(CLI::ExistingFile)
-      ->check(file_kind({io::FileKind::kScenario, io::FileKind::kOtherYaml},
-                        "a scenario (configs/scenarios/)"));
-  sub->add_option("--out", o->out, "Output CARMEN log (.gz ok)")->required();
-  auto* truth = sub->add_option("--truth-out", o->truth, "Also write the true trajectory (TUM)")
-                    ->type_name("FILE");
-  o->truth_name = DeprecatedName(*sub, truth, "--truth", o->truth);
-  sub->add_option("--set", o->sets,
-                  "Override a scenario key, e.g. duration=20 or robot.start=[1,2,0] (value read "
-                  "as YAML)")
-      ->take_all();
-  o->seed_opt = add_seed_option(*sub, o->seed, "Random seed (the scenario's seed: key)");
-  sub->add_option("--threads", o->threads,
-                  "OpenMP threads (0 = OpenMP default); the log is the same for any count")
-      ->capture_default_str()
-      ->check(whole_number(0, config_schema::kMaxThreads));
-  sub->add_flag("--quiet", o->quiet, "No summary line");
-  return {sub, [o] { return run_simulate(*o); }};
+  return make_command<SimulateOptions>(app, "simulate", "Simulate a scenario into a CARMEN log",
+                                       add_simulate_options, run_simulate);
 }
 
 }  // namespace pgmcl::app

@@ -5,6 +5,8 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <memory>
+#include <string>
 
 namespace pgmcl::app {
 
@@ -12,6 +14,18 @@ struct Command {
   CLI::App* sub = nullptr;
   std::function<int()> run;
 };
+
+/// Registers subcommand `name` whose options fill one `Options` struct: `declare(sub, options)`
+/// adds them, and the returned command calls `run(options)`. The struct lives in the closure,
+/// so the pointers CLI11 keeps into it stay valid for as long as the command.
+template <class Options, class Declare, class Run>
+Command make_command(CLI::App& app, const std::string& name, const std::string& description,
+                     Declare declare, Run run) {
+  auto options = std::make_shared<Options>();
+  CLI::App* sub = app.add_subcommand(name, description);
+  declare(*sub, *options);
+  return {sub, [options, run] { return run(*options); }};
+}
 
 Command add_localize_command(CLI::App& app);
 Command add_run_command(CLI::App& app);

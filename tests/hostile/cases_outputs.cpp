@@ -39,291 +39,230 @@ std::string perturb_args(const Env& e, const std::string& outs) {
 std::vector<Case> output_cases() {
   std::vector<Case> c;
   // An output that is an input, by name, by another spelling, or by link.
-  c.push_back({"eval_out_is_truth",
-               Expect::kError,
-               2,
-               [](const Env& e) {
-                 copy(e, e.b.truth, "truth.tum");
-                 copy(e, e.b.truth, "est.tum");
-                 return std::string("eval --estimate est.tum --truth truth.tum --out truth.tum");
-               },
-               {"--out", "is also the input --truth"}});
-  c.push_back({"eval_out_is_estimate",
-               Expect::kError,
-               2,
-               [](const Env& e) {
-                 copy(e, e.b.truth, "est.tum");
-                 return "eval --estimate est.tum --truth " + e.b.truth + " --out est.tum";
-               },
-               {"is also the input --estimate"}});
-  c.push_back({"eval_out_is_truth_other_spelling",
-               Expect::kError,
-               2,
-               [](const Env& e) {
-                 copy(e, e.b.truth, "truth.tum");
-                 copy(e, e.b.truth, "est.tum");
-                 fs::create_directories(e.path("sub"));
-                 return std::string(
-                     "eval --estimate est.tum --truth truth.tum --out ./sub/../truth.tum");
-               },
-               {"is also the input --truth"}});
-  c.push_back({"eval_out_symlink_to_truth",
-               Expect::kError,
-               2,
-               [](const Env& e) {
-                 copy(e, e.b.truth, "truth.tum");
-                 copy(e, e.b.truth, "est.tum");
-                 fs::create_symlink("truth.tum", e.path("link.yaml"));
-                 return std::string("eval --estimate est.tum --truth truth.tum --out link.yaml");
-               },
-               {"is also the input --truth"}});
-  c.push_back({"eval_out_hardlink_to_truth",
-               Expect::kError,
-               2,
-               [](const Env& e) {
-                 copy(e, e.b.truth, "truth.tum");
-                 copy(e, e.b.truth, "est.tum");
-                 fs::create_hard_link(e.path("truth.tum"), e.path("hard.yaml"));
-                 return std::string("eval --estimate est.tum --truth truth.tum --out hard.yaml");
-               },
-               {"is also the input --truth"}});
-  c.push_back({"map_out_is_log",
-               Expect::kError,
-               2,
-               [](const Env& e) {
-                 copy(e, e.b.log, "l.log");
-                 return std::string("map --log l.log --out l.log");
-               },
-               {"--out", "is also the input --log"}});
-  c.push_back({"map_out_named_like_its_image",
-               Expect::kError,
-               2,
-               [](const Env& e) { return "map --log " + e.b.log + " --out m/map.pgm"; },
-               {"would be one file", ".yaml"}});
-  c.push_back({"map_image_not_an_image_name",
-               Expect::kError,
-               2,
-               [](const Env& e) {
-                 copy(e, e.b.log, "l.log");
-                 return std::string("map --log l.log --out m.yaml --image l.log");
-               },
-               {"--image"}});
-  c.push_back({"perturb_out_equals_truth_out",
-               Expect::kError,
-               2,
-               [](const Env& e) { return perturb_args(e, "--out x.log --truth-out x.log"); },
-               {"is also the output --out"}});
-  c.push_back({"perturb_out_equals_deprecated_truth",
-               Expect::kError,
-               2,
-               [](const Env& e) { return perturb_args(e, "--out x.log --truth x.log"); },
-               {"--truth", "is also the output --out"}});
-  c.push_back({"perturb_out_is_log",
-               Expect::kError,
-               2,
-               [](const Env& e) {
-                 copy(e, e.b.log, "l.log");
-                 return std::string(
-                     "perturb --log l.log --odom-noise 0.01,0,0.01,0 --seed 1 "
-                     "--out l.log --truth-out t.tum");
-               },
-               {"is also the input --log"}});
-  c.push_back({"perturb_truth_out_is_log",
-               Expect::kError,
-               2,
-               [](const Env& e) {
-                 copy(e, e.b.log, "l.log");
-                 return std::string(
-                     "perturb --log l.log --odom-noise 0.01,0,0.01,0 --seed 1 "
-                     "--out o.log --truth-out l.log");
-               },
-               {"--truth-out", "is also the input --log"}});
-  c.push_back({"localize_truth_is_an_output",
-               Expect::kError,
-               2,
-               [](const Env& e) {
-                 copy(e, e.b.truth, "out/trajectory.tum");
-                 return e.localize("--truth out/trajectory.tum");
-               },
-               {"trajectory.tum is also the input --truth"}});
-  c.push_back({"localize_map_image_is_an_output",
-               Expect::kError,
-               2,
-               [](const Env& e) {
-                 copy(e, e.b.image, "out/overlay.png");
-                 e.write("m.yaml", "image: out/overlay.png\n" + map_keys(kIntelOrigin));
-                 return e.localize("", "", "m.yaml");
-               },
-               {"overlay.png is also the input --map's image"}});
-  c.push_back({"localize_config_is_an_output",
-               Expect::kError,
-               2,
-               [](const Env& e) {
-                 e.write("out/config.yaml", "threads: 1\n");
-                 return e.localize("--config out/config.yaml");
-               },
-               {"is also the input --config"}});
-  c.push_back({"simulate_out_is_scenario",
-               Expect::kError,
-               2,
-               [](const Env& e) {
-                 copy(e, PGMCL_SOURCE_DIR "/configs/scenarios/lab.yaml", "lab.yaml");
-                 return std::string("simulate lab.yaml --out lab.yaml");
-               },
-               {"is also the input scenario"}});
-  c.push_back({"run_truth_is_an_output",
-               Expect::kError,
-               2,
-               [](const Env& e) {
-                 copy(e, e.b.truth, "out/trajectory.tum");
-                 e.write("exp.yaml", "name: x\nmap: " + e.b.map + "\ndata:\n  log: " + e.b.log +
-                                         "\n  truth: out/trajectory.tum\nout: out\n");
-                 return std::string("run exp.yaml --quiet");
-               },
-               {"is also the input data.truth"}});
-  c.push_back({"perturb_map_out_is_input",
-               Expect::kError,
-               2,
-               [](const Env& e) {
-                 copy(e, e.b.map, "map.yaml");
-                 copy(e, e.b.image, "map.pgm");
-                 return std::string("perturb-map --map map.yaml --out map.yaml --thicken 1");
-               },
-               {"is also the input --map"}});
+  c.push_back(error_case("eval_out_is_truth", 2,
+                         [](const Env& e) {
+                           copy(e, e.b.truth, "truth.tum");
+                           copy(e, e.b.truth, "est.tum");
+                           return std::string(
+                               "eval --estimate est.tum --truth truth.tum --out truth.tum");
+                         },
+                         {"--out", "is also the input --truth"}));
+  c.push_back(error_case("eval_out_is_estimate", 2,
+                         [](const Env& e) {
+                           copy(e, e.b.truth, "est.tum");
+                           return "eval --estimate est.tum --truth " + e.b.truth + " --out est.tum";
+                         },
+                         {"is also the input --estimate"}));
+  c.push_back(error_case(
+      "eval_out_is_truth_other_spelling", 2,
+      [](const Env& e) {
+        copy(e, e.b.truth, "truth.tum");
+        copy(e, e.b.truth, "est.tum");
+        fs::create_directories(e.path("sub"));
+        return std::string("eval --estimate est.tum --truth truth.tum --out ./sub/../truth.tum");
+      },
+      {"is also the input --truth"}));
+  c.push_back(error_case("eval_out_symlink_to_truth", 2,
+                         [](const Env& e) {
+                           copy(e, e.b.truth, "truth.tum");
+                           copy(e, e.b.truth, "est.tum");
+                           fs::create_symlink("truth.tum", e.path("link.yaml"));
+                           return std::string(
+                               "eval --estimate est.tum --truth truth.tum --out link.yaml");
+                         },
+                         {"is also the input --truth"}));
+  c.push_back(error_case("eval_out_hardlink_to_truth", 2,
+                         [](const Env& e) {
+                           copy(e, e.b.truth, "truth.tum");
+                           copy(e, e.b.truth, "est.tum");
+                           fs::create_hard_link(e.path("truth.tum"), e.path("hard.yaml"));
+                           return std::string(
+                               "eval --estimate est.tum --truth truth.tum --out hard.yaml");
+                         },
+                         {"is also the input --truth"}));
+  c.push_back(error_case("map_out_is_log", 2,
+                         [](const Env& e) {
+                           copy(e, e.b.log, "l.log");
+                           return std::string("map --log l.log --out l.log");
+                         },
+                         {"--out", "is also the input --log"}));
+  c.push_back(error_case("map_out_named_like_its_image", 2,
+                         [](const Env& e) { return "map --log " + e.b.log + " --out m/map.pgm"; },
+                         {"would be one file", ".yaml"}));
+  c.push_back(error_case("map_image_not_an_image_name", 2,
+                         [](const Env& e) {
+                           copy(e, e.b.log, "l.log");
+                           return std::string("map --log l.log --out m.yaml --image l.log");
+                         },
+                         {"--image"}));
+  c.push_back(
+      error_case("perturb_out_equals_truth_out", 2,
+                 [](const Env& e) { return perturb_args(e, "--out x.log --truth-out x.log"); },
+                 {"is also the output --out"}));
+  c.push_back(error_case("perturb_out_equals_deprecated_truth", 2,
+                         [](const Env& e) { return perturb_args(e, "--out x.log --truth x.log"); },
+                         {"--truth", "is also the output --out"}));
+  c.push_back(error_case("perturb_out_is_log", 2,
+                         [](const Env& e) {
+                           copy(e, e.b.log, "l.log");
+                           return std::string(
+                               "perturb --log l.log --odom-noise 0.01,0,0.01,0 --seed 1 "
+                               "--out l.log --truth-out t.tum");
+                         },
+                         {"is also the input --log"}));
+  c.push_back(error_case("perturb_truth_out_is_log", 2,
+                         [](const Env& e) {
+                           copy(e, e.b.log, "l.log");
+                           return std::string(
+                               "perturb --log l.log --odom-noise 0.01,0,0.01,0 --seed 1 "
+                               "--out o.log --truth-out l.log");
+                         },
+                         {"--truth-out", "is also the input --log"}));
+  c.push_back(error_case("localize_truth_is_an_output", 2,
+                         [](const Env& e) {
+                           copy(e, e.b.truth, "out/trajectory.tum");
+                           return e.localize("--truth out/trajectory.tum");
+                         },
+                         {"trajectory.tum is also the input --truth"}));
+  c.push_back(error_case("localize_map_image_is_an_output", 2,
+                         [](const Env& e) {
+                           copy(e, e.b.image, "out/overlay.png");
+                           e.write("m.yaml", "image: out/overlay.png\n" + map_keys(kIntelOrigin));
+                           return e.localize("", "", "m.yaml");
+                         },
+                         {"overlay.png is also the input --map's image"}));
+  c.push_back(error_case("localize_config_is_an_output", 2,
+                         [](const Env& e) {
+                           e.write("out/config.yaml", "threads: 1\n");
+                           return e.localize("--config out/config.yaml");
+                         },
+                         {"is also the input --config"}));
+  c.push_back(error_case("simulate_out_is_scenario", 2,
+                         [](const Env& e) {
+                           copy(e, PGMCL_SOURCE_DIR "/configs/scenarios/lab.yaml", "lab.yaml");
+                           return std::string("simulate lab.yaml --out lab.yaml");
+                         },
+                         {"is also the input scenario"}));
+  c.push_back(error_case("run_truth_is_an_output", 2,
+                         [](const Env& e) {
+                           copy(e, e.b.truth, "out/trajectory.tum");
+                           e.write("exp.yaml", "name: x\nmap: " + e.b.map +
+                                                   "\ndata:\n  log: " + e.b.log +
+                                                   "\n  truth: out/trajectory.tum\nout: out\n");
+                           return std::string("run exp.yaml --quiet");
+                         },
+                         {"is also the input data.truth"}));
+  c.push_back(error_case("perturb_map_out_is_input", 2,
+                         [](const Env& e) {
+                           copy(e, e.b.map, "map.yaml");
+                           copy(e, e.b.image, "map.pgm");
+                           return std::string(
+                               "perturb-map --map map.yaml --out map.yaml --thicken 1");
+                         },
+                         {"is also the input --map"}));
   // Re-runs replace the whole set or nothing.
-  c.push_back({"rerun_without_truth_drops_error_png",
-               Expect::kAccepted,
-               0,
-               [](const Env& e) {
-                 earlier_run(e);
-                 return e.localize("");
-               },
-               {},
-               [](const Env& e, const RunResult&) {
-                 EXPECT_FALSE(fs::exists(e.path("out/error.png")));
-                 EXPECT_EQ(testkit::read_text(e.path("out/metrics.yaml")).find("ate_rmse_m"),
-                           std::string::npos);
-               }});
-  c.push_back({"failed_rerun_bad_log_keeps_earlier_set",
-               Expect::kError,
-               1,
-               [](const Env& e) {
-                 earlier_run(e);
-                 std::vector<std::string> l = e.log_lines();
-                 l.push_back("FLASER 3 1 2");
-                 return e.localize("--strict", e.write("bad.log", join(l)));
-               },
-               {"bad.log:"}});
-  c.push_back({"failed_rerun_bad_map_keeps_earlier_set",
-               Expect::kError,
-               1,
-               [](const Env& e) {
-                 earlier_run(e);
-                 return e.localize("", "",
-                                   e.map_yaml("raw.yaml", "mode: raw\n" + map_keys(kIntelOrigin)));
-               },
-               {"no occupied cell"}});
-  c.push_back({"failed_rerun_scan_rejected_keeps_earlier_set",
-               Expect::kError,
-               1,
-               [](const Env& e) {
-                 earlier_run(e);
-                 return e.localize("--set likelihood.expected_beams=181");
-               },
-               {"rejected by the filter"}});
-  c.push_back({"rerun_keeps_other_files_in_the_folder",
-               Expect::kAccepted,
-               0,
-               [](const Env& e) {
-                 e.write("out/notes.txt", "mine\n");
-                 return e.localize("");
-               },
-               {},
-               [](const Env& e, const RunResult&) {
-                 EXPECT_EQ(testkit::read_text(e.path("out/notes.txt")), "mine\n");
-               }});
-  c.push_back({"perturb_map_rerun_png_then_pgm",
-               Expect::kAccepted,
-               0,
-               [](const Env& e) {
-                 const RunResult r = run_pgmcl("perturb-map --map " + e.b.map +
-                                                   " --out p/m.yaml --thicken 1 --blur 1 --quiet",
-                                               e.dir.path().string());
-                 EXPECT_EQ(r.code, 0) << r.err;
-                 EXPECT_TRUE(fs::exists(e.path("p/m.png")));
-                 return "perturb-map --map " + e.b.map + " --out p/m.yaml --thicken 1 --quiet";
-               },
-               {},
-               [](const Env& e, const RunResult&) {
-                 EXPECT_FALSE(fs::exists(e.path("p/m.png")));
-                 EXPECT_TRUE(fs::exists(e.path("p/m.pgm")));
-                 EXPECT_NO_THROW((void)maps::load_map(e.path("p/m.yaml")));
-               }});
+  c.push_back(accepted_case(
+      "rerun_without_truth_drops_error_png",
+      [](const Env& e) {
+        earlier_run(e);
+        return e.localize("");
+      },
+      [](const Env& e, const RunResult&) {
+        EXPECT_FALSE(fs::exists(e.path("out/error.png")));
+        EXPECT_EQ(testkit::read_text(e.path("out/metrics.yaml")).find("ate_rmse_m"),
+                  std::string::npos);
+      }));
+  c.push_back(error_case("failed_rerun_bad_log_keeps_earlier_set", 1,
+                         [](const Env& e) {
+                           earlier_run(e);
+                           std::vector<std::string> l = e.log_lines();
+                           l.push_back("FLASER 3 1 2");
+                           return e.localize("--strict", e.write("bad.log", join(l)));
+                         },
+                         {"bad.log:"}));
+  c.push_back(error_case(
+      "failed_rerun_bad_map_keeps_earlier_set", 1,
+      [](const Env& e) {
+        earlier_run(e);
+        return e.localize("", "", e.map_yaml("raw.yaml", "mode: raw\n" + map_keys(kIntelOrigin)));
+      },
+      {"no occupied cell"}));
+  c.push_back(error_case("failed_rerun_scan_rejected_keeps_earlier_set", 1,
+                         [](const Env& e) {
+                           earlier_run(e);
+                           return e.localize("--set likelihood.expected_beams=181");
+                         },
+                         {"rejected by the filter"}));
+  c.push_back(accepted_case(
+      "rerun_keeps_other_files_in_the_folder",
+      [](const Env& e) {
+        e.write("out/notes.txt", "mine\n");
+        return e.localize("");
+      },
+      [](const Env& e, const RunResult&) {
+        EXPECT_EQ(testkit::read_text(e.path("out/notes.txt")), "mine\n");
+      }));
+  c.push_back(accepted_case(
+      "perturb_map_rerun_png_then_pgm",
+      [](const Env& e) {
+        const RunResult r = run_pgmcl(
+            "perturb-map --map " + e.b.map + " --out p/m.yaml --thicken 1 --blur 1 --quiet",
+            e.dir.path().string());
+        EXPECT_EQ(r.code, 0) << r.err;
+        EXPECT_TRUE(fs::exists(e.path("p/m.png")));
+        return "perturb-map --map " + e.b.map + " --out p/m.yaml --thicken 1 --quiet";
+      },
+      [](const Env& e, const RunResult&) {
+        EXPECT_FALSE(fs::exists(e.path("p/m.png")));
+        EXPECT_TRUE(fs::exists(e.path("p/m.pgm")));
+        EXPECT_NO_THROW((void)maps::load_map(e.path("p/m.yaml")));
+      }));
   // Output folders are checked before any work.
-  c.push_back({"out_folder_under_a_file",
-               Expect::kError,
-               1,
-               [](const Env& e) {
-                 e.write("f", "a file\n");
-                 std::vector<std::string> l = e.log_lines();
-                 l.push_back("FLASER 3 1 2");
-                 // The log would fail too (--strict): the folder must be what is reported.
-                 return e.localize("--strict --out f/sub", e.write("bad.log", join(l)));
-               },
-               {"--out", "cannot create the folder"}});
-  c.push_back({"out_is_an_existing_file",
-               Expect::kError,
-               1,
-               [](const Env& e) {
-                 e.write("f", "a file\n");
-                 return e.localize("--out f");
-               },
-               {"--out", "cannot create the folder"}});
-  c.push_back({"localize_out_empty",
-               Expect::kError,
-               2,
-               [](const Env& e) { return e.localize("--out ''"); },
-               {"--out", "empty"}});
-  c.push_back({"eval_out_is_a_folder",
-               Expect::kError,
-               2,
-               [](const Env& e) {
-                 fs::create_directories(e.path("d"));
-                 return "eval --estimate " + e.b.truth + " --truth " + e.b.truth + " --out d";
-               },
-               {"--out", "is a folder"}});
-  c.push_back({"eval_out_full_disk",
-               Expect::kError,
-               1,
-               [](const Env& e) {
-                 return "eval --estimate " + e.b.truth + " --truth " + e.b.truth +
-                        " --out /dev/full";
-               },
-               {"/dev/full", "No space left on device"}});
-  c.push_back({"eval_out_dev_null",
-               Expect::kAccepted,
-               0,
-               [](const Env& e) {
-                 return "eval --estimate " + e.b.truth + " --truth " + e.b.truth +
-                        " --out /dev/null";
-               },
-               {}});
-  c.push_back({"perturb_second_output_unwritable_writes_neither",
-               Expect::kError,
-               1,
-               [](const Env& e) {
-                 e.write("f", "a file\n");
-                 return perturb_args(e, "--out p/raw.log --truth-out f/t.tum");
-               },
-               {"--truth-out", "cannot create the folder"}});
-  c.push_back({"map_out_in_new_nested_folder",
-               Expect::kAccepted,
-               0,
-               [](const Env& e) { return "map --log " + e.b.log + " --out a/b/c/m.yaml --quiet"; },
-               {},
-               [](const Env& e, const RunResult&) {
-                 EXPECT_GT(maps::load_map(e.path("a/b/c/m.yaml")).size(), 0u);
-               }});
+  c.push_back(error_case("out_folder_under_a_file", 1,
+                         [](const Env& e) {
+                           e.write("f", "a file\n");
+                           std::vector<std::string> l = e.log_lines();
+                           l.push_back("FLASER 3 1 2");
+                           // The log would fail too (--strict): the folder must be what is
+                           // reported.
+                           return e.localize("--strict --out f/sub", e.write("bad.log", join(l)));
+                         },
+                         {"--out", "cannot create the folder"}));
+  c.push_back(error_case("out_is_an_existing_file", 1,
+                         [](const Env& e) {
+                           e.write("f", "a file\n");
+                           return e.localize("--out f");
+                         },
+                         {"--out", "cannot create the folder"}));
+  c.push_back(error_case("localize_out_empty", 2, localize_with("--out ''"), {"--out", "empty"}));
+  c.push_back(error_case("eval_out_is_a_folder", 2,
+                         [](const Env& e) {
+                           fs::create_directories(e.path("d"));
+                           return "eval --estimate " + e.b.truth + " --truth " + e.b.truth +
+                                  " --out d";
+                         },
+                         {"--out", "is a folder"}));
+  c.push_back(error_case("eval_out_full_disk", 1,
+                         [](const Env& e) {
+                           return "eval --estimate " + e.b.truth + " --truth " + e.b.truth +
+                                  " --out /dev/full";
+                         },
+                         {"/dev/full", "No space left on device"}));
+  c.push_back(accepted_case("eval_out_dev_null", [](const Env& e) {
+    return "eval --estimate " + e.b.truth + " --truth " + e.b.truth + " --out /dev/null";
+  }));
+  c.push_back(error_case("perturb_second_output_unwritable_writes_neither", 1,
+                         [](const Env& e) {
+                           e.write("f", "a file\n");
+                           return perturb_args(e, "--out p/raw.log --truth-out f/t.tum");
+                         },
+                         {"--truth-out", "cannot create the folder"}));
+  c.push_back(accepted_case(
+      "map_out_in_new_nested_folder",
+      [](const Env& e) { return "map --log " + e.b.log + " --out a/b/c/m.yaml --quiet"; },
+      [](const Env& e, const RunResult&) {
+        EXPECT_GT(maps::load_map(e.path("a/b/c/m.yaml")).size(), 0u);
+      }));
   return c;
 }
 

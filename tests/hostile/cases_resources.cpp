@@ -26,191 +26,131 @@ std::string scenario(const Env& e, const std::string& name, const std::string& k
 std::vector<Case> resource_cases() {
   std::vector<Case> c;
   // Threads: libgomp segfaulted creating 65535; capped at 1024, warned above the cores.
-  c.push_back({"threads_flag_100000",
-               Expect::kError,
-               2,
-               [](const Env& e) { return e.localize("--threads 100000"); },
-               {"--threads", "100000", "[0, 1024]"}});
-  c.push_back({"threads_flag_65535",
-               Expect::kError,
-               2,
-               [](const Env& e) { return e.localize("--threads 65535"); },
-               {"--threads"}});
-  c.push_back({"threads_flag_negative",
-               Expect::kError,
-               2,
-               [](const Env& e) { return e.localize("--threads -4"); },
-               {"--threads"}});
-  c.push_back({"threads_set_65535",
-               Expect::kError,
-               1,
-               [](const Env& e) { return e.localize("--set threads=65535"); },
-               {"--set threads=65535", "threads", "1024"}});
-  c.push_back({"threads_config_file_5000",
-               Expect::kError,
-               1,
-               [](const Env& e) {
-                 e.write("cfg.yaml", "threads: 5000\n");
-                 return e.localize("--config cfg.yaml");
-               },
-               {"cfg.yaml:1", "threads", "5000"}});
-  c.push_back({"threads_above_cores_warns",
-               Expect::kWarning,
-               0,
-               [](const Env& e) { return e.localize("--threads 64"); },
-               {"threads = 64 is more than the"}});
+  c.push_back(error_case("threads_flag_100000", 2, localize_with("--threads 100000"),
+                         {"--threads", "100000", "[0, 1024]"}));
+  c.push_back(error_case("threads_flag_65535", 2, localize_with("--threads 65535"), {"--threads"}));
+  c.push_back(error_case("threads_flag_negative", 2, localize_with("--threads -4"), {"--threads"}));
+  c.push_back(error_case("threads_set_65535", 1, localize_with("--set threads=65535"),
+                         {"--set threads=65535", "threads", "1024"}));
+  c.push_back(error_case("threads_config_file_5000", 1,
+                         [](const Env& e) {
+                           e.write("cfg.yaml", "threads: 5000\n");
+                           return e.localize("--config cfg.yaml");
+                         },
+                         {"cfg.yaml:1", "threads", "5000"}));
+  c.push_back(warning_case("threads_above_cores_warns", localize_with("--threads 64"),
+                           {"threads = 64 is more than the"}));
   // Particle counts: the field, the value and the memory.
-  c.push_back({"particles_1e12_kld_off",
-               Expect::kError,
-               1,
-               [](const Env& e) {
-                 return e.localize(
-                     "--set filter.kld.enabled=false --set filter.particles=1000000000000");
-               },
-               {"filter.particles", "1000000000000", "10000000", "GB"}});
-  c.push_back({"global_particles_1e11_config",
-               Expect::kError,
-               1,
-               [](const Env& e) {
-                 e.write("cfg.yaml", "filter:\n  global_particles: 100000000000\n");
-                 return e.localize("--config cfg.yaml");
-               },
-               {"cfg.yaml:2", "filter.global_particles", "GB"}});
-  c.push_back(
-      {"kld_max_particles_1e10",
-       Expect::kError,
-       1,
-       [](const Env& e) { return e.localize("--set filter.kld.max_particles=10000000000"); },
-       {"filter.kld.max_particles", "GB"}});
+  c.push_back(error_case(
+      "particles_1e12_kld_off", 1,
+      localize_with("--set filter.kld.enabled=false --set filter.particles=1000000000000"),
+      {"filter.particles", "1000000000000", "10000000", "GB"}));
+  c.push_back(error_case("global_particles_1e11_config", 1,
+                         [](const Env& e) {
+                           e.write("cfg.yaml", "filter:\n  global_particles: 100000000000\n");
+                           return e.localize("--config cfg.yaml");
+                         },
+                         {"cfg.yaml:2", "filter.global_particles", "GB"}));
+  c.push_back(error_case("kld_max_particles_1e10", 1,
+                         localize_with("--set filter.kld.max_particles=10000000000"),
+                         {"filter.kld.max_particles", "GB"}));
   // Found by the config fuzzer: a scan of this many readings is 370 GB.
-  c.push_back(
-      {"expected_beams_92e9",
-       Expect::kError,
-       1,
-       [](const Env& e) { return e.localize("--set likelihood.expected_beams=92500000000"); },
-       {"likelihood.expected_beams", "92500000000", "1048576", "GB"}});
+  c.push_back(error_case("expected_beams_92e9", 1,
+                         localize_with("--set likelihood.expected_beams=92500000000"),
+                         {"likelihood.expected_beams", "92500000000", "1048576", "GB"}));
   // A gzipped log whose one line inflates past the line limit.
-  c.push_back({"gzip_bomb_one_line",
-               Expect::kError,
-               1,
-               [](const Env& e) {
-                 e.write_gz("bomb.log.gz", repeat("aaaaaaaaaaaaaaaa", 65u << 20));
-                 return e.localize("", "bomb.log.gz");
-               },
-               {"bomb.log.gz:1", "line", "64 MiB"}});
-  c.push_back({"gzip_bomb_after_valid_lines",
-               Expect::kError,
-               1,
-               [](const Env& e) {
-                 std::vector<std::string> l = e.log_lines();
-                 l.resize(40);
-                 e.write_gz("bomb.log.gz",
-                            join(l) + "ODOM " + repeat("1111111111111111", 65u << 20));
-                 return e.localize("", "bomb.log.gz");
-               },
-               {"bomb.log.gz:41", "line", "MiB"}});
-  c.push_back({"gzip_bomb_for_map",
-               Expect::kError,
-               1,
-               [](const Env& e) {
-                 e.write_gz("bomb.log.gz", repeat("FLASER 1 ", 65u << 20));
-                 return std::string("map --log bomb.log.gz --out m/map.yaml");
-               },
-               {"bomb.log.gz:1", "MiB"}});
-  c.push_back({"gzip_bomb_as_truth",
-               Expect::kError,
-               1,
-               [](const Env& e) {
-                 e.write_gz("bomb.tum.gz", repeat("0 ", 65u << 20));
-                 return e.localize("--truth bomb.tum.gz");
-               },
-               {"bomb.tum.gz:1", "MiB"}});
+  c.push_back(error_case("gzip_bomb_one_line", 1,
+                         [](const Env& e) {
+                           e.write_gz("bomb.log.gz", repeat("aaaaaaaaaaaaaaaa", 65u << 20));
+                           return e.localize("", "bomb.log.gz");
+                         },
+                         {"bomb.log.gz:1", "line", "64 MiB"}));
+  c.push_back(error_case("gzip_bomb_after_valid_lines", 1,
+                         [](const Env& e) {
+                           std::vector<std::string> l = e.log_lines();
+                           l.resize(40);
+                           e.write_gz("bomb.log.gz",
+                                      join(l) + "ODOM " + repeat("1111111111111111", 65u << 20));
+                           return e.localize("", "bomb.log.gz");
+                         },
+                         {"bomb.log.gz:41", "line", "MiB"}));
+  c.push_back(error_case("gzip_bomb_for_map", 1,
+                         [](const Env& e) {
+                           e.write_gz("bomb.log.gz", repeat("FLASER 1 ", 65u << 20));
+                           return std::string("map --log bomb.log.gz --out m/map.yaml");
+                         },
+                         {"bomb.log.gz:1", "MiB"}));
+  c.push_back(error_case("gzip_bomb_as_truth", 1,
+                         [](const Env& e) {
+                           e.write_gz("bomb.tum.gz", repeat("0 ", 65u << 20));
+                           return e.localize("--truth bomb.tum.gz");
+                         },
+                         {"bomb.tum.gz:1", "MiB"}));
   // Scenarios whose duration asks for more scans or control steps than memory holds.
-  c.push_back({"scenario_1e15_scans",
-               Expect::kError,
-               1,
-               [](const Env& e) {
-                 scenario(e, "s.yaml", "duration: 1.0e14\nscan_rate: 10\n");
-                 return std::string("simulate s.yaml --out sim.log");
-               },
-               {"s.yaml:", "duration", "1e+15 scans", "GB"}});
-  c.push_back({"scenario_scan_rate_1e12",
-               Expect::kError,
-               1,
-               [](const Env& e) {
-                 scenario(e, "s.yaml", "duration: 30\nscan_rate: 1.0e12\n");
-                 return std::string("simulate s.yaml --out sim.log");
-               },
-               {"duration", "scan_rate 1e+12 Hz", "GB"}});
-  c.push_back({"scenario_control_steps_1e12",
-               Expect::kError,
-               1,
-               [](const Env& e) {
-                 scenario(e, "s.yaml", "duration: 1.0e6\nscan_rate: 0.001\ncontrol_rate: 1.0e6\n");
-                 return std::string("simulate s.yaml --out sim.log");
-               },
-               {"duration", "control steps"}});
-  c.push_back({"scenario_huge_in_experiment",
-               Expect::kError,
-               1,
-               [](const Env& e) {
-                 scenario(e, "s.yaml", "duration: 1.0e14\n");
-                 e.write("exp.yaml", "name: x\ndata:\n  scenario: s.yaml\nout: out\n");
-                 return std::string("run exp.yaml --quiet");
-               },
-               {"duration", "GB"}});
+  c.push_back(error_case("scenario_1e15_scans", 1,
+                         [](const Env& e) {
+                           scenario(e, "s.yaml", "duration: 1.0e14\nscan_rate: 10\n");
+                           return std::string("simulate s.yaml --out sim.log");
+                         },
+                         {"s.yaml:", "duration", "1e+15 scans", "GB"}));
+  c.push_back(error_case("scenario_scan_rate_1e12", 1,
+                         [](const Env& e) {
+                           scenario(e, "s.yaml", "duration: 30\nscan_rate: 1.0e12\n");
+                           return std::string("simulate s.yaml --out sim.log");
+                         },
+                         {"duration", "scan_rate 1e+12 Hz", "GB"}));
+  c.push_back(error_case("scenario_control_steps_1e12", 1,
+                         [](const Env& e) {
+                           scenario(e, "s.yaml",
+                                    "duration: 1.0e6\nscan_rate: 0.001\ncontrol_rate: 1.0e6\n");
+                           return std::string("simulate s.yaml --out sim.log");
+                         },
+                         {"duration", "control steps"}));
+  c.push_back(error_case("scenario_huge_in_experiment", 1,
+                         [](const Env& e) {
+                           scenario(e, "s.yaml", "duration: 1.0e14\n");
+                           e.write("exp.yaml", "name: x\ndata:\n  scenario: s.yaml\nout: out\n");
+                           return std::string("run exp.yaml --quiet");
+                         },
+                         {"duration", "GB"}));
   // Sizes that become memory in the other commands.
-  c.push_back(
-      {"map_resolution_1e_minus_6",
-       Expect::kError,
-       2,
-       [](const Env& e) { return "map --log " + e.b.log + " --resolution 1e-6 --out m.yaml"; },
-       {"--resolution", "cells", "GB"}});
-  c.push_back(
-      {"perturb_map_blur_1e12",
-       Expect::kError,
-       2,
-       [](const Env& e) { return "perturb-map --map " + e.b.map + " --out p.yaml --blur 1e12"; },
-       {"--blur", "1e+12"}});
-  c.push_back({"perturb_map_thicken_1e9",
-               Expect::kError,
-               2,
-               [](const Env& e) {
-                 return "perturb-map --map " + e.b.map + " --out p.yaml --thicken 1000000000";
-               },
-               {"--thicken"}});
-  c.push_back(
-      {"table_bytes_limit",
-       Expect::kError,
-       1,
-       [](const Env& e) { return e.localize("--set likelihood.table.max_table_bytes=1000"); },
-       {"max_table_bytes", "bytes"}});
-  c.push_back({"calibrate_readings_1e12",
-               Expect::kError,
-               2,
-               [](const Env&) {
-                 return std::string("calibrate range --simulate --readings 1000000000000");
-               },
-               {"--readings"}});
-  c.push_back({"pgm_header_100000_square",
-               Expect::kError,
-               1,
-               [](const Env& e) {
-                 e.write("huge.pgm", "P5\n100000 100000\n255\n" + std::string(16, '\xfe'));
-                 e.write("huge.yaml", "image: huge.pgm\n" + map_keys("[0, 0, 0]"));
-                 return e.localize("", "", "huge.yaml");
-               },
-               {"huge.pgm", "pixels"}});
-  c.push_back({"num_readings_1e9_line_dropped",
-               Expect::kWarning,
-               0,
-               [](const Env& e) {
-                 std::vector<std::string> l = e.log_lines();
-                 const std::string huge_count = "FLASER 1000000000 1 2 3";
-                 l.push_back(huge_count);
-                 return e.localize("", e.write("l.log", join(l)));
-               },
-               {"dropped 1 malformed line", "num_readings"}});
+  c.push_back(error_case(
+      "map_resolution_1e_minus_6", 2,
+      [](const Env& e) { return "map --log " + e.b.log + " --resolution 1e-6 --out m.yaml"; },
+      {"--resolution", "cells", "GB"}));
+  c.push_back(error_case(
+      "perturb_map_blur_1e12", 2,
+      [](const Env& e) { return "perturb-map --map " + e.b.map + " --out p.yaml --blur 1e12"; },
+      {"--blur", "1e+12"}));
+  c.push_back(error_case("perturb_map_thicken_1e9", 2,
+                         [](const Env& e) {
+                           return "perturb-map --map " + e.b.map +
+                                  " --out p.yaml --thicken 1000000000";
+                         },
+                         {"--thicken"}));
+  c.push_back(error_case("table_bytes_limit", 1,
+                         localize_with("--set likelihood.table.max_table_bytes=1000"),
+                         {"max_table_bytes", "bytes"}));
+  c.push_back(error_case(
+      "calibrate_readings_1e12", 2,
+      [](const Env&) { return std::string("calibrate range --simulate --readings 1000000000000"); },
+      {"--readings"}));
+  c.push_back(error_case("pgm_header_100000_square", 1,
+                         [](const Env& e) {
+                           e.write("huge.pgm",
+                                   "P5\n100000 100000\n255\n" + std::string(16, '\xfe'));
+                           e.write("huge.yaml", "image: huge.pgm\n" + map_keys("[0, 0, 0]"));
+                           return e.localize("", "", "huge.yaml");
+                         },
+                         {"huge.pgm", "pixels"}));
+  c.push_back(warning_case("num_readings_1e9_line_dropped",
+                           [](const Env& e) {
+                             std::vector<std::string> l = e.log_lines();
+                             const std::string huge_count = "FLASER 1000000000 1 2 3";
+                             l.push_back(huge_count);
+                             return e.localize("", e.write("l.log", join(l)));
+                           },
+                           {"dropped 1 malformed line", "num_readings"}));
   return c;
 }
 

@@ -22,129 +22,76 @@ std::string uniform_map(const Env& e, const std::string& name, char value) {
 std::vector<Case> start_and_map_cases() {
   std::vector<Case> c;
   // Start poses outside the map, in a wall, or in degrees.
-  c.push_back({"init_far_outside",
-               Expect::kError,
-               2,
-               [](const Env& e) { return e.localize("--init 1e6,1e6,0"); },
-               {"--init", "outside the map", "x in [-20.9, 21.55]"}});
-  c.push_back({"init_just_outside",
-               Expect::kError,
-               2,
-               [](const Env& e) { return e.localize("--init 21.7,0,0"); },
-               {"--init", "outside"}});
-  c.push_back({"init_negative_far",
-               Expect::kError,
-               2,
-               [](const Env& e) { return e.localize("--init -1e9,-1e9,1"); },
-               {"--init"}});
-  c.push_back({"init_in_a_wall",
-               Expect::kWarning,
-               0,
-               [](const Env& e) { return e.localize("--init " + pose_text(e.b.wall)); },
-               {"--init", "occupied cell"}});
-  c.push_back({"init_heading_degrees_20",
-               Expect::kWarning,
-               0,
-               [](const Env& e) { return e.localize("--init 0.6,-0.03,20"); },
-               {"--init", "beyond ±2π", "20 degrees"}});
-  c.push_back({"init_heading_degrees_minus_340",
-               Expect::kWarning,
-               0,
-               [](const Env& e) { return e.localize("--init 0.6,-0.03,-340"); },
-               {"beyond ±2π"}});
-  c.push_back({"init_empty",
-               Expect::kError,
-               2,
-               [](const Env& e) { return e.localize("--init ''"); },
-               {"--init", "''"}});
-  c.push_back({"init_blank",
-               Expect::kError,
-               2,
-               [](const Env& e) { return e.localize("--init ' '"); },
-               {"--init"}});
-  c.push_back({"init_two_numbers",
-               Expect::kError,
-               2,
-               [](const Env& e) { return e.localize("--init 0.6,0"); },
-               {"--init", "2 values"}});
-  c.push_back({"init_nan",
-               Expect::kError,
-               2,
-               [](const Env& e) { return e.localize("--init nan,0,0"); },
-               {"--init"}});
-  c.push_back({"init_and_global",
-               Expect::kError,
-               2,
-               [](const Env& e) { return e.localize("--init 0.6,0,0 --global"); },
-               {"--global"}});
-  c.push_back({"experiment_init_outside",
-               Expect::kError,
-               2,
-               [](const Env& e) {
-                 e.write("exp.yaml", "name: x\nmap: " + e.b.map + "\ndata:\n  log: " + e.b.log +
-                                         "\ninit: [1.0e6, 1.0e6, 0]\nout: out\n");
-                 return std::string("run exp.yaml --quiet");
-               },
-               {"exp.yaml: init", "outside the map"}});
+  c.push_back(error_case("init_far_outside", 2, localize_with("--init 1e6,1e6,0"),
+                         {"--init", "outside the map", "x in [-20.9, 21.55]"}));
+  c.push_back(
+      error_case("init_just_outside", 2, localize_with("--init 21.7,0,0"), {"--init", "outside"}));
+  c.push_back(error_case("init_negative_far", 2, localize_with("--init -1e9,-1e9,1"), {"--init"}));
+  c.push_back(warning_case("init_in_a_wall",
+                           [](const Env& e) { return e.localize("--init " + pose_text(e.b.wall)); },
+                           {"--init", "occupied cell"}));
+  c.push_back(warning_case("init_heading_degrees_20", localize_with("--init 0.6,-0.03,20"),
+                           {"--init", "beyond ±2π", "20 degrees"}));
+  c.push_back(warning_case("init_heading_degrees_minus_340", localize_with("--init 0.6,-0.03,-340"),
+                           {"beyond ±2π"}));
+  c.push_back(error_case("init_empty", 2, localize_with("--init ''"), {"--init", "''"}));
+  c.push_back(error_case("init_blank", 2, localize_with("--init ' '"), {"--init"}));
+  c.push_back(
+      error_case("init_two_numbers", 2, localize_with("--init 0.6,0"), {"--init", "2 values"}));
+  c.push_back(error_case("init_nan", 2, localize_with("--init nan,0,0"), {"--init"}));
+  c.push_back(
+      error_case("init_and_global", 2, localize_with("--init 0.6,0,0 --global"), {"--global"}));
+  c.push_back(error_case("experiment_init_outside", 2,
+                         [](const Env& e) {
+                           e.write("exp.yaml", "name: x\nmap: " + e.b.map +
+                                                   "\ndata:\n  log: " + e.b.log +
+                                                   "\ninit: [1.0e6, 1.0e6, 0]\nout: out\n");
+                           return std::string("run exp.yaml --quiet");
+                         },
+                         {"exp.yaml: init", "outside the map"}));
   // Maps with nothing to match.
+  c.push_back(error_case(
+      "map_all_free", 1,
+      [](const Env& e) { return e.localize("--init 0,0,0", "", uniform_map(e, "free", '\xfe')); },
+      {"free.yaml", "no occupied cell", "40000 free"}));
+  c.push_back(error_case(
+      "map_all_unknown", 1,
+      [](const Env& e) { return e.localize("--init 0,0,0", "", uniform_map(e, "u", '\xcd')); },
+      {"no occupied cell"}));
+  c.push_back(error_case(
+      "map_raw_mode_on_trinary_image", 1,
+      [](const Env& e) {
+        return e.localize("", "", e.map_yaml("raw.yaml", "mode: raw\n" + map_keys(kIntelOrigin)));
+      },
+      {"raw.yaml", "no occupied cell", "`mode`"}));
+  c.push_back(error_case(
+      "map_occupied_thresh_1", 1,
+      [](const Env& e) {
+        return e.localize("", "", e.map_yaml("t.yaml", map_keys(kIntelOrigin, "0.05", "0", "1.0")));
+      },
+      {"no occupied cell"}));
+  c.push_back(error_case("map_resolution_1e9", 1,
+                         [](const Env& e) {
+                           return e.localize("", "",
+                                             e.map_yaml("r.yaml", map_keys(kIntelOrigin, "1.0e9")));
+                         },
+                         {"r.yaml:2", "resolution", "1e+09"}));
+  c.push_back(error_case("map_resolution_20_m", 1,
+                         [](const Env& e) {
+                           return e.localize("", "",
+                                             e.map_yaml("r.yaml", map_keys(kIntelOrigin, "20")));
+                         },
+                         {"r.yaml", "resolution", "spans fewer than 4 cells"}));
+  c.push_back(warning_case("map_negated",
+                           [](const Env& e) {
+                             return e.localize(
+                                 "", "", e.map_yaml("n.yaml", map_keys(kIntelOrigin, "0.05", "1")));
+                           },
+                           {"more occupied", "negate"}));
   c.push_back(
-      {"map_all_free",
-       Expect::kError,
-       1,
-       [](const Env& e) { return e.localize("--init 0,0,0", "", uniform_map(e, "free", '\xfe')); },
-       {"free.yaml", "no occupied cell", "40000 free"}});
-  c.push_back(
-      {"map_all_unknown",
-       Expect::kError,
-       1,
-       [](const Env& e) { return e.localize("--init 0,0,0", "", uniform_map(e, "u", '\xcd')); },
-       {"no occupied cell"}});
-  c.push_back({"map_raw_mode_on_trinary_image",
-               Expect::kError,
-               1,
-               [](const Env& e) {
-                 return e.localize("", "",
-                                   e.map_yaml("raw.yaml", "mode: raw\n" + map_keys(kIntelOrigin)));
-               },
-               {"raw.yaml", "no occupied cell", "`mode`"}});
-  c.push_back({"map_occupied_thresh_1",
-               Expect::kError,
-               1,
-               [](const Env& e) {
-                 return e.localize(
-                     "", "", e.map_yaml("t.yaml", map_keys(kIntelOrigin, "0.05", "0", "1.0")));
-               },
-               {"no occupied cell"}});
-  c.push_back({"map_resolution_1e9",
-               Expect::kError,
-               1,
-               [](const Env& e) {
-                 return e.localize("", "", e.map_yaml("r.yaml", map_keys(kIntelOrigin, "1.0e9")));
-               },
-               {"r.yaml:2", "resolution", "1e+09"}});
-  c.push_back({"map_resolution_20_m",
-               Expect::kError,
-               1,
-               [](const Env& e) {
-                 return e.localize("", "", e.map_yaml("r.yaml", map_keys(kIntelOrigin, "20")));
-               },
-               {"r.yaml", "resolution", "spans fewer than 4 cells"}});
-  c.push_back({"map_negated",
-               Expect::kWarning,
-               0,
-               [](const Env& e) {
-                 return e.localize("", "",
-                                   e.map_yaml("n.yaml", map_keys(kIntelOrigin, "0.05", "1")));
-               },
-               {"more occupied", "negate"}});
-  c.push_back({"map_of_another_building",
-               Expect::kWarning,
-               0,
-               [](const Env& e) {
-                 return e.localize("--init 5,5,0", "",
-                                   PGMCL_SOURCE_DIR "/data/maps/nav2/depot.yaml");
-               },
-               {"hardly matched the map"}});
+      warning_case("map_of_another_building",
+                   localize_with("--init 5,5,0", "", PGMCL_SOURCE_DIR "/data/maps/nav2/depot.yaml"),
+                   {"hardly matched the map"}));
   return c;
 }
 

@@ -200,6 +200,28 @@ std::string Env::localize(const std::string& extra, const std::string& log,
          (own_out ? "" : " --out out") + " " + extra;
 }
 
+Case error_case(std::string name, int code, MakeArgs make, std::vector<std::string> stderr_has,
+                CheckRun check) {
+  return {std::move(name), Expect::kError,        code,
+          std::move(make), std::move(stderr_has), std::move(check)};
+}
+
+Case warning_case(std::string name, MakeArgs make, std::vector<std::string> stderr_has,
+                  CheckRun check) {
+  return {std::move(name), Expect::kWarning,      0,
+          std::move(make), std::move(stderr_has), std::move(check)};
+}
+
+Case accepted_case(std::string name, MakeArgs make, CheckRun check) {
+  return {std::move(name), Expect::kAccepted, 0, std::move(make), {}, std::move(check)};
+}
+
+MakeArgs localize_with(std::string extra, std::string log, std::string map) {
+  return [extra = std::move(extra), log = std::move(log), map = std::move(map)](const Env& e) {
+    return e.localize(extra, log, map);
+  };
+}
+
 std::string repeat(const std::string& line, std::size_t bytes) {
   std::string s;
   s.reserve(bytes + line.size());

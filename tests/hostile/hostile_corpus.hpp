@@ -75,16 +75,29 @@ struct Env {
 
 enum class Expect { kError, kWarning, kAccepted };
 
+/// Writes a case's inputs into its folder and returns pgmcl's arguments.
+using MakeArgs = std::function<std::string(const Env&)>;
+/// Extra checks of a case's outputs (oracles), after the generic ones.
+using CheckRun = std::function<void(const Env&, const RunResult&)>;
+
 struct Case {
   std::string name;  ///< a gtest name: letters, digits, underscores
   Expect expect = Expect::kError;
   int code = 1;
-  /// Writes the case's inputs into the folder and returns pgmcl's arguments.
-  std::function<std::string(const Env&)> make;
+  MakeArgs make;
   std::vector<std::string> stderr_has;  ///< each must appear in stderr
-  /// Extra checks of the outputs (oracles), after the generic ones.
-  std::function<void(const Env&, const RunResult&)> check = nullptr;
+  CheckRun check = nullptr;
 };
+
+/// One builder per class, so that each case is one expression.
+[[nodiscard]] Case error_case(std::string name, int code, MakeArgs make,
+                              std::vector<std::string> stderr_has, CheckRun check = nullptr);
+[[nodiscard]] Case warning_case(std::string name, MakeArgs make,
+                                std::vector<std::string> stderr_has, CheckRun check = nullptr);
+[[nodiscard]] Case accepted_case(std::string name, MakeArgs make, CheckRun check = nullptr);
+
+/// The arguments of Env::localize(extra, log, map), for a case that only runs localize.
+[[nodiscard]] MakeArgs localize_with(std::string extra, std::string log = "", std::string map = "");
 
 /// The corpus, by issue-14 class.
 std::vector<Case> resource_cases();       // crashes, memory and time limits

@@ -69,20 +69,11 @@ detail::Stamp make_stamp(const detail::CellMetric& metric, int reach,
 }  // namespace
 
 const char* to_string(TableKind kind) noexcept {
-  switch (kind) {
-    case TableKind::kIsotropic:
-      return "isotropic";
-    case TableKind::kOrientedBins:
-      return "oriented";
-    case TableKind::kOffsetField:
-      return "offset";
-  }
-  return "unknown";
+  return name_of(kind, kTableKindNames, "unknown");
 }
 
 TableKind table_kind_from_string(const std::string& name) {
-  for (TableKind k : {TableKind::kIsotropic, TableKind::kOrientedBins, TableKind::kOffsetField})
-    if (name == to_string(k)) return k;
+  if (const auto kind = value_of(name, kTableKindNames)) return *kind;
   throw std::invalid_argument("unknown likelihood table kind '" + name +
                               "' (expected isotropic, oriented or offset)");
 }

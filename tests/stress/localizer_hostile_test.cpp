@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iostream>
 #include <limits>
@@ -15,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "pgmcl/common/enum_names.hpp"
 #include "pgmcl/mcl/localizer.hpp"
 #include "stress_drive.hpp"
 #include "stress_world.hpp"
@@ -41,18 +43,15 @@ struct Lap {
 
 enum class Hostile { kMaxRange, kNaN, kInsideWall, kBoxedIn };
 
+constexpr std::array<EnumName<Hostile>, 4> kHostileNames{{
+    {Hostile::kMaxRange, "all_max_range"},
+    {Hostile::kNaN, "all_nan"},
+    {Hostile::kInsideWall, "inside_a_wall"},
+    {Hostile::kBoxedIn, "boxed_in"},
+}};
+
 const char* name(Hostile h) {
-  switch (h) {
-    case Hostile::kMaxRange:
-      return "all_max_range";
-    case Hostile::kNaN:
-      return "all_nan";
-    case Hostile::kInsideWall:
-      return "inside_a_wall";
-    case Hostile::kBoxedIn:
-      return "boxed_in";
-  }
-  return "?";
+  return name_of(h, kHostileNames);
 }
 
 class EveryBeamImpossible : public ::testing::TestWithParam<Hostile> {};

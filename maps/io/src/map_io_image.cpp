@@ -9,6 +9,7 @@
 #include <string>
 
 #include "image_codec.hpp"
+#include "pgmcl/common/enum_names.hpp"
 #include "pgmcl/map_io/map_io.hpp"
 
 namespace pgmcl::maps {
@@ -53,22 +54,18 @@ MapError::MapError(std::string file, int line, std::string field, const std::str
       field_(std::move(field)),
       problem_(problem) {}
 
+constexpr std::array<EnumName<MapMode>, 3> kMapModeNames{{
+    {MapMode::kTrinary, "trinary"},
+    {MapMode::kScale, "scale"},
+    {MapMode::kRaw, "raw"},
+}};
+
 const char* to_string(MapMode mode) noexcept {
-  switch (mode) {
-    case MapMode::kTrinary:
-      return "trinary";
-    case MapMode::kScale:
-      return "scale";
-    case MapMode::kRaw:
-      return "raw";
-  }
-  return "?";
+  return name_of(mode, kMapModeNames);
 }
 
 MapMode map_mode_from_string(const std::string& name) {
-  if (name == "trinary") return MapMode::kTrinary;
-  if (name == "scale") return MapMode::kScale;
-  if (name == "raw") return MapMode::kRaw;
+  if (const auto mode = value_of(name, kMapModeNames)) return *mode;
   throw std::invalid_argument("unknown map mode '" + name + "' (expected trinary, scale or raw)");
 }
 

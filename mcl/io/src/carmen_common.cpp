@@ -2,29 +2,14 @@
 #include <numbers>
 #include <sstream>
 
+#include "carmen_messages.hpp"
 #include "pgmcl/io/carmen.hpp"
 #include "pgmcl/io/values.hpp"
 
 namespace pgmcl::io {
 
 std::string_view message_name(LaserMessage m) noexcept {
-  switch (m) {
-    case LaserMessage::kFlaser:
-      return "FLASER";
-    case LaserMessage::kRlaser:
-      return "RLASER";
-    case LaserMessage::kRobotLaser1:
-      return "ROBOTLASER1";
-    case LaserMessage::kRawLaser1:
-      return "RAWLASER1";
-    case LaserMessage::kRawLaser2:
-      return "RAWLASER2";
-    case LaserMessage::kRawLaser3:
-      return "RAWLASER3";
-    case LaserMessage::kRawLaser4:
-      return "RAWLASER4";
-  }
-  return "FLASER";
+  return name_of(m, detail::kLaserMessageNames, "FLASER");
 }
 
 BeamLayout sick_beam_layout(std::size_t n) noexcept {

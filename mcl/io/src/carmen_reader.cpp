@@ -16,17 +16,6 @@ namespace {
 /// SICK LMS maximum reading; used only when a log has no readings to infer it from.
 constexpr double kDefaultSickRangeMax = 81.91;  ///< metres
 
-std::optional<LaserMessage> laser_message(std::string_view type) noexcept {
-  if (type == "FLASER") return LaserMessage::kFlaser;
-  if (type == "RLASER") return LaserMessage::kRlaser;
-  if (type == "ROBOTLASER1") return LaserMessage::kRobotLaser1;
-  if (type == "RAWLASER1") return LaserMessage::kRawLaser1;
-  if (type == "RAWLASER2") return LaserMessage::kRawLaser2;
-  if (type == "RAWLASER3") return LaserMessage::kRawLaser3;
-  if (type == "RAWLASER4") return LaserMessage::kRawLaser4;
-  return std::nullopt;
-}
-
 /// Consumes lines one at a time, so files and in-memory text share one code path.
 class CarmenParser {
  public:
@@ -58,7 +47,7 @@ class CarmenParser {
         add_bytes(sizeof(TruePosRecord), line_no);
         log_.truepos.push_back(std::move(r));
         count(type);
-      } else if (const auto msg = laser_message(type)) {
+      } else if (const auto msg = value_of(type, detail::kLaserMessageNames)) {
         CarmenScan s = (*msg == LaserMessage::kFlaser || *msg == LaserMessage::kRlaser)
                            ? detail::parse_flaser(tokens_, *msg)
                            : detail::parse_config_laser(tokens_, *msg);

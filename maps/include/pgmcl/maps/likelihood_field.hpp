@@ -20,12 +20,20 @@
 #include <string>
 #include <vector>
 
+#include "pgmcl/common/enum_names.hpp"
 #include "pgmcl/maps/occupancy_grid.hpp"
 #include "pgmcl/sensor_model/beam_likelihood.hpp"
 
 namespace pgmcl::maps {
 
 enum class TableKind : std::uint8_t { kIsotropic, kOrientedBins, kOffsetField };
+
+/// The names of the table kinds, as configs and the command line write them.
+inline constexpr std::array<EnumName<TableKind>, 3> kTableKindNames{{
+    {TableKind::kIsotropic, "isotropic"},
+    {TableKind::kOrientedBins, "oriented"},
+    {TableKind::kOffsetField, "offset"},
+}};
 
 [[nodiscard]] const char* to_string(TableKind kind) noexcept;
 /// Parses "isotropic" | "oriented" | "offset"; throws std::invalid_argument otherwise.

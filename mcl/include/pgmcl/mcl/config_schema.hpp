@@ -20,6 +20,7 @@
 #include <limits>
 #include <string>
 
+#include "pgmcl/common/enum_names.hpp"
 #include "pgmcl/mcl/localizer_config.hpp"
 
 namespace pgmcl::config_schema {
@@ -83,11 +84,8 @@ inline constexpr int kMaxThreads = 1024;
 inline constexpr Bounds kSigma{0.0, 10.0, true, false};
 inline constexpr Bounds kMismatch{0.0, 10.0, false, false};
 
-template <class E>
-struct EnumName {
-  E value;
-  const char* name;  ///< the first name of a value is the one written; later ones are aliases
-};
+using pgmcl::EnumName;
+using pgmcl::name_of;
 
 inline constexpr std::array<EnumName<MotionModelKind>, 4> kMotionKinds{{
     {MotionModelKind::kDifferentialDrive, "differential_drive"},
@@ -95,11 +93,8 @@ inline constexpr std::array<EnumName<MotionModelKind>, 4> kMotionKinds{{
     {MotionModelKind::kDifferentialDrive, "diff_drive"},
     {MotionModelKind::kOmnidirectional, "omni"},
 }};
-inline constexpr std::array<EnumName<maps::TableKind>, 3> kTableKinds{{
-    {maps::TableKind::kIsotropic, "isotropic"},
-    {maps::TableKind::kOrientedBins, "oriented"},
-    {maps::TableKind::kOffsetField, "offset"},
-}};
+inline constexpr const std::array<EnumName<maps::TableKind>, 3>& kTableKinds =
+    maps::kTableKindNames;
 inline constexpr std::array<EnumName<BeamSelectionMode>, 3> kSelectionModes{{
     {BeamSelectionMode::kAll, "all"},
     {BeamSelectionMode::kStride, "stride"},
@@ -109,14 +104,6 @@ inline constexpr std::array<EnumName<TimeBackwardsPolicy>, 2> kTimePolicies{{
     {TimeBackwardsPolicy::kThrow, "throw"},
     {TimeBackwardsPolicy::kReset, "reset"},
 }};
-
-/// The name written for `value` (its first entry in `names`).
-template <class E, std::size_t N>
-[[nodiscard]] const char* name_of(E value, const std::array<EnumName<E>, N>& names) noexcept {
-  for (const auto& n : names)
-    if (n.value == value) return n.name;
-  return "?";
-}
 
 /// Variance-form motion alphas above this mean odometry carries no information (a std of
 /// 10x the motion itself); far larger ones overflow the sampled poses.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -35,6 +36,41 @@ void face_normal(HitFace face, float dx, float dy, float& nx, float& ny) noexcep
       nx = -dx;
       ny = -dy;
       return;
+  }
+}
+
+/// One slab of the ray-rectangle clip along one axis: the ray s + t d (inv_d = 1 / d) within
+/// [0, extent]. Narrows [t_enter, t_exit] (entry_face records the face crossed last on entry);
+/// false when a ray parallel to the slab lies outside it.
+bool clip_to_slab(float s, float d, float inv_d, float extent, HitFace min_face, HitFace max_face,
+                  float& t_enter, float& t_exit, HitFace& entry_face) noexcept {
+  if (d == 0.0F) return !(s < 0.0F || s > extent);  // a NaN start is left to the walk
+  float t0 = (0.0F - s) * inv_d;
+  float t1 = (extent - s) * inv_d;
+  if (t0 > t1) std::swap(t0, t1);
+  if (t0 > t_enter) {
+    t_enter = t0;
+    entry_face = d > 0.0F ? min_face : max_face;
+  }
+  t_exit = std::min(t_exit, t1);
+  return true;
+}
+
+/// Casts the beams of `fan` from `local` (the sensor in the grid frame), in parallel for large
+/// fans, and hands beam i's hit to store(i, hit).
+template <class Store>
+void cast_fan(const RayCaster& caster, const Pose2& local, const BeamFan& fan, Store&& store) {
+  const auto x = static_cast<float>(local.x);
+  const auto y = static_cast<float>(local.y);
+  const auto max_range = static_cast<float>(fan.max_range);
+  const int n = fan.count;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) if (n >= 256)
+#endif
+  for (int i = 0; i < n; ++i) {
+    const auto a = static_cast<float>(local.theta + fan.angle_min + i * fan.angle_increment);
+    store(static_cast<std::size_t>(i),
+          caster.cast_local_dir(x, y, std::cos(a), std::sin(a), max_range));
   }
 }
 
@@ -96,31 +132,13 @@ RayHit RayCaster::cast_local_dir(float x, float y, float dx, float dy,
   float t_enter = 0.0F;
   float t_exit = t_limit;
   HitFace entry_face = HitFace::kStart;
-  if (dx == 0.0F) {
-    if (sx < 0.0F || sx > w) return out;
-  } else {
-    float t0 = (0.0F - sx) * inv_dx;
-    float t1 = (w - sx) * inv_dx;
-    if (t0 > t1) std::swap(t0, t1);
-    if (t0 > t_enter) {
-      t_enter = t0;
-      entry_face = dx > 0.0F ? HitFace::kMinX : HitFace::kMaxX;
-    }
-    t_exit = std::min(t_exit, t1);
+  if (!clip_to_slab(sx, dx, inv_dx, w, HitFace::kMinX, HitFace::kMaxX, t_enter, t_exit,
+                    entry_face) ||
+      !clip_to_slab(sy, dy, inv_dy, h, HitFace::kMinY, HitFace::kMaxY, t_enter, t_exit,
+                    entry_face) ||
+      t_enter > t_exit) {
+    return out;
   }
-  if (dy == 0.0F) {
-    if (sy < 0.0F || sy > h) return out;
-  } else {
-    float t0 = (0.0F - sy) * inv_dy;
-    float t1 = (h - sy) * inv_dy;
-    if (t0 > t1) std::swap(t0, t1);
-    if (t0 > t_enter) {
-      t_enter = t0;
-      entry_face = dy > 0.0F ? HitFace::kMinY : HitFace::kMaxY;
-    }
-    t_exit = std::min(t_exit, t1);
-  }
-  if (t_enter > t_exit) return out;
 
   int col = std::clamp(static_cast<int>(std::floor(sx + t_enter * dx)), 0, width_ - 1);
   int row = std::clamp(static_cast<int>(std::floor(sy + t_enter * dy)), 0, height_ - 1);
@@ -202,41 +220,19 @@ void RayCaster::cast_scan(const Pose2& sensor, const BeamFan& fan, std::span<flo
                                 std::to_string(ranges.size()) + " entries for " +
                                 std::to_string(fan.count) + " beams");
   }
-  const Pose2 local = origin_.between(sensor);
-  const auto x = static_cast<float>(local.x);
-  const auto y = static_cast<float>(local.y);
-  const auto max_range = static_cast<float>(fan.max_range);
-  const int n = fan.count;
-#ifdef _OPENMP
-#pragma omp parallel for schedule(static) if (n >= 256)
-#endif
-  for (int i = 0; i < n; ++i) {
-    const auto a = static_cast<float>(local.theta + fan.angle_min + i * fan.angle_increment);
-    ranges[static_cast<std::size_t>(i)] =
-        cast_local_dir(x, y, std::cos(a), std::sin(a), max_range).range;
-  }
+  cast_fan(*this, origin_.between(sensor), fan,
+           [ranges](std::size_t i, const RayHit& hit) { ranges[i] = hit.range; });
 }
 
 void RayCaster::cast_scan(const Pose2& sensor, const BeamFan& fan, ScanHits& hits) const {
   if (fan.count < 0) throw std::invalid_argument("RayCaster::cast_scan: negative beam count");
   hits.resize(static_cast<std::size_t>(fan.count));
-  const Pose2 local = origin_.between(sensor);
-  const auto x = static_cast<float>(local.x);
-  const auto y = static_cast<float>(local.y);
-  const auto max_range = static_cast<float>(fan.max_range);
-  const int n = fan.count;
-#ifdef _OPENMP
-#pragma omp parallel for schedule(static) if (n >= 256)
-#endif
-  for (int i = 0; i < n; ++i) {
-    const auto a = static_cast<float>(local.theta + fan.angle_min + i * fan.angle_increment);
-    const RayHit r = cast_local_dir(x, y, std::cos(a), std::sin(a), max_range);
-    const auto k = static_cast<std::size_t>(i);
-    hits.range[k] = r.range;
-    hits.col[k] = r.col;
-    hits.row[k] = r.row;
-    hits.face[k] = r.face;
-  }
+  cast_fan(*this, origin_.between(sensor), fan, [&hits](std::size_t i, const RayHit& hit) {
+    hits.range[i] = hit.range;
+    hits.col[i] = hit.col;
+    hits.row[i] = hit.row;
+    hits.face[i] = hit.face;
+  });
 }
 
 // The wall through the hit cell is fitted by principal components of the nearby surface

@@ -81,17 +81,9 @@ std::vector<Case> first_round_cases() {
       [](const Env& e) { return e.localize("--truth " + e.write("t.tum", "1 nan 0 0 0 0 0 1\n")); },
       {"t.tum:1"}));
   c.push_back(error_case("config_unknown_key", 1,
-                         [](const Env& e) {
-                           e.write("cfg.yaml", "filter:\n  particels: 100\n");
-                           return e.localize("--config cfg.yaml");
-                         },
+                         localize_with_config("filter:\n  particels: 100\n"),
                          {"cfg.yaml:2", "particels", "particles"}));
-  c.push_back(error_case("config_not_yaml", 1,
-                         [](const Env& e) {
-                           e.write("cfg.yaml", "filter: [\n");
-                           return e.localize("--config cfg.yaml");
-                         },
-                         {"cfg.yaml"}));
+  c.push_back(error_case("config_not_yaml", 1, localize_with_config("filter: [\n"), {"cfg.yaml"}));
   c.push_back(error_case("set_unknown_key", 1, localize_with("--set filter.particle=10"),
                          {"filter.particle"}));
   c.push_back(error_case("set_not_a_number", 1, localize_with("--set filter.particles=many"),

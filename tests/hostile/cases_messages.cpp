@@ -71,10 +71,7 @@ std::vector<Case> message_cases() {
       {"kernel would reach", "likelihood.beam.model_mismatch = 9 m"}));
   c.push_back(error_case(
       "kernel_reach_from_config_file", 2,
-      [](const Env& e) {
-        e.write("cfg.yaml", "likelihood:\n  beam: {sigma_along: 8}\n  table: {reach_sigmas: 20}\n");
-        return e.localize("--config cfg.yaml");
-      },
+      localize_with_config("likelihood:\n  beam: {sigma_along: 8}\n  table: {reach_sigmas: 20}\n"),
       {"kernel would reach", "likelihood.beam.sigma_along = 8 m"}));
   c.push_back(error_case("image_is_a_folder", 1,
                          [](const Env& e) {
@@ -84,10 +81,7 @@ std::vector<Case> message_cases() {
                          },
                          {"img", "is a folder", "m.yaml:1"}));
   c.push_back(error_case("image_is_dev_zero", 1,
-                         [](const Env& e) {
-                           e.write("m.yaml", "image: /dev/zero\n" + map_keys(kIntelOrigin));
-                           return e.localize("", "", "m.yaml");
-                         },
+                         localize_on_map_yaml("image: /dev/zero\n" + map_keys(kIntelOrigin)),
                          {"/dev/zero", "not a regular file"}));
   c.push_back(error_case("image_is_a_fifo", 1,
                          [](const Env& e) {
@@ -97,16 +91,10 @@ std::vector<Case> message_cases() {
                          },
                          {"pipe.pgm", "not a regular file"}));
   c.push_back(error_case("image_missing", 1,
-                         [](const Env& e) {
-                           e.write("m.yaml", "image: nowhere.pgm\n" + map_keys(kIntelOrigin));
-                           return e.localize("", "", "m.yaml");
-                         },
+                         localize_on_map_yaml("image: nowhere.pgm\n" + map_keys(kIntelOrigin)),
                          {"nowhere.pgm", "cannot open"}));
   c.push_back(error_case("image_is_the_yaml", 1,
-                         [](const Env& e) {
-                           e.write("m.yaml", "image: m.yaml\n" + map_keys(kIntelOrigin));
-                           return e.localize("", "", "m.yaml");
-                         },
+                         localize_on_map_yaml("image: m.yaml\n" + map_keys(kIntelOrigin)),
                          {"not a PGM/PPM or PNG"}));
   c.push_back(error_case("image_empty_file", 1,
                          [](const Env& e) {
@@ -138,10 +126,9 @@ std::vector<Case> message_cases() {
       "kernel_radius_too_small_warns",
       [](const Env&) { return std::string("kernel --sigma-x 5000 --sigma-y 5000 --cell 10"); },
       {"of the kernel's mass", "--radius"}));
-  c.push_back(error_case(
-      "map_command_resolution_1e300", 2,
-      [](const Env& e) { return "map --log " + e.b.log + " --resolution 1e300 --out m.yaml"; },
-      {"--resolution", "1000"}));
+  c.push_back(error_case("map_command_resolution_1e300", 2,
+                         map_base_log("--resolution 1e300 --out m.yaml"),
+                         {"--resolution", "1000"}));
   c.push_back(error_case(
       "map_command_every_beam_no_return", 1,
       [](const Env& e) {
@@ -149,16 +136,10 @@ std::vector<Case> message_cases() {
         return std::string("map --log n.log --out m.yaml");
       },
       {"no occupied cell", "nothing was written"}));
-  c.push_back(error_case(
-      "perturb_map_erase_everything", 1,
-      [](const Env& e) { return "perturb-map --map " + e.b.map + " --out p.yaml --erase 1,1"; },
-      {"no occupied cell"}));
+  c.push_back(error_case("perturb_map_erase_everything", 1,
+                         perturb_base_map("--out p.yaml --erase 1,1"), {"no occupied cell"}));
   c.push_back(error_case("perturb_map_erase_block_1e300", 1,
-                         [](const Env& e) {
-                           return "perturb-map --map " + e.b.map +
-                                  " --out p.yaml --erase 0.5,1e300";
-                         },
-                         {"no occupied cell"}));
+                         perturb_base_map("--out p.yaml --erase 0.5,1e300"), {"no occupied cell"}));
   return c;
 }
 

@@ -86,8 +86,7 @@ std::vector<Case> output_cases() {
                            return std::string("map --log l.log --out l.log");
                          },
                          {"--out", "is also the input --log"}));
-  c.push_back(error_case("map_out_named_like_its_image", 2,
-                         [](const Env& e) { return "map --log " + e.b.log + " --out m/map.pgm"; },
+  c.push_back(error_case("map_out_named_like_its_image", 2, map_base_log("--out m/map.pgm"),
                          {"would be one file", ".yaml"}));
   c.push_back(error_case("map_image_not_an_image_name", 2,
                          [](const Env& e) {
@@ -257,12 +256,11 @@ std::vector<Case> output_cases() {
                            return perturb_args(e, "--out p/raw.log --truth-out f/t.tum");
                          },
                          {"--truth-out", "cannot create the folder"}));
-  c.push_back(accepted_case(
-      "map_out_in_new_nested_folder",
-      [](const Env& e) { return "map --log " + e.b.log + " --out a/b/c/m.yaml --quiet"; },
-      [](const Env& e, const RunResult&) {
-        EXPECT_GT(maps::load_map(e.path("a/b/c/m.yaml")).size(), 0u);
-      }));
+  c.push_back(accepted_case("map_out_in_new_nested_folder",
+                            map_base_log("--out a/b/c/m.yaml --quiet"),
+                            [](const Env& e, const RunResult&) {
+                              EXPECT_GT(maps::load_map(e.path("a/b/c/m.yaml")).size(), 0u);
+                            }));
   return c;
 }
 

@@ -32,11 +32,7 @@ std::vector<Case> resource_cases() {
   c.push_back(error_case("threads_flag_negative", 2, localize_with("--threads -4"), {"--threads"}));
   c.push_back(error_case("threads_set_65535", 1, localize_with("--set threads=65535"),
                          {"--set threads=65535", "threads", "1024"}));
-  c.push_back(error_case("threads_config_file_5000", 1,
-                         [](const Env& e) {
-                           e.write("cfg.yaml", "threads: 5000\n");
-                           return e.localize("--config cfg.yaml");
-                         },
+  c.push_back(error_case("threads_config_file_5000", 1, localize_with_config("threads: 5000\n"),
                          {"cfg.yaml:1", "threads", "5000"}));
   c.push_back(warning_case("threads_above_cores_warns", localize_with("--threads 64"),
                            {"threads = 64 is more than the"}));
@@ -46,10 +42,7 @@ std::vector<Case> resource_cases() {
       localize_with("--set filter.kld.enabled=false --set filter.particles=1000000000000"),
       {"filter.particles", "1000000000000", "10000000", "GB"}));
   c.push_back(error_case("global_particles_1e11_config", 1,
-                         [](const Env& e) {
-                           e.write("cfg.yaml", "filter:\n  global_particles: 100000000000\n");
-                           return e.localize("--config cfg.yaml");
-                         },
+                         localize_with_config("filter:\n  global_particles: 100000000000\n"),
                          {"cfg.yaml:2", "filter.global_particles", "GB"}));
   c.push_back(error_case("kld_max_particles_1e10", 1,
                          localize_with("--set filter.kld.max_particles=10000000000"),
@@ -114,20 +107,13 @@ std::vector<Case> resource_cases() {
                          },
                          {"duration", "GB"}));
   // Sizes that become memory in the other commands.
-  c.push_back(error_case(
-      "map_resolution_1e_minus_6", 2,
-      [](const Env& e) { return "map --log " + e.b.log + " --resolution 1e-6 --out m.yaml"; },
-      {"--resolution", "cells", "GB"}));
-  c.push_back(error_case(
-      "perturb_map_blur_1e12", 2,
-      [](const Env& e) { return "perturb-map --map " + e.b.map + " --out p.yaml --blur 1e12"; },
-      {"--blur", "1e+12"}));
+  c.push_back(error_case("map_resolution_1e_minus_6", 2,
+                         map_base_log("--resolution 1e-6 --out m.yaml"),
+                         {"--resolution", "cells", "GB"}));
+  c.push_back(error_case("perturb_map_blur_1e12", 2, perturb_base_map("--out p.yaml --blur 1e12"),
+                         {"--blur", "1e+12"}));
   c.push_back(error_case("perturb_map_thicken_1e9", 2,
-                         [](const Env& e) {
-                           return "perturb-map --map " + e.b.map +
-                                  " --out p.yaml --thicken 1000000000";
-                         },
-                         {"--thicken"}));
+                         perturb_base_map("--out p.yaml --thicken 1000000000"), {"--thicken"}));
   c.push_back(error_case("table_bytes_limit", 1,
                          localize_with("--set likelihood.table.max_table_bytes=1000"),
                          {"max_table_bytes", "bytes"}));

@@ -186,10 +186,7 @@ std::vector<Case> silent_cases() {
                  },
                  {"--seed"}));
   c.push_back(error_case("perturb_map_seed_too_big", 2,
-                         [](const Env& e) {
-                           return "perturb-map --map " + e.b.map +
-                                  " --out p.yaml --erase 0.1,1 --seed 99999999999999999999";
-                         },
+                         perturb_base_map("--out p.yaml --erase 0.1,1 --seed 99999999999999999999"),
                          {"--seed"}));
   c.push_back(error_case("set_seed_minus_one", 1, localize_with("--set seed=-1"),
                          {"--set seed=-1", "seed"}));

@@ -222,6 +222,32 @@ MakeArgs localize_with(std::string extra, std::string log, std::string map) {
   };
 }
 
+MakeArgs localize_with_config(std::string yaml) {
+  return [yaml = std::move(yaml)](const Env& e) {
+    e.write("cfg.yaml", yaml);
+    return e.localize("--config cfg.yaml");
+  };
+}
+
+MakeArgs localize_on_map_yaml(std::string yaml) {
+  return [yaml = std::move(yaml)](const Env& e) {
+    e.write("m.yaml", yaml);
+    return e.localize("", "", "m.yaml");
+  };
+}
+
+MakeArgs perturb_base_map(std::string options) {
+  return [options = std::move(options)](const Env& e) {
+    return "perturb-map --map " + e.b.map + " " + options;
+  };
+}
+
+MakeArgs map_base_log(std::string options) {
+  return [options = std::move(options)](const Env& e) {
+    return "map --log " + e.b.log + " " + options;
+  };
+}
+
 std::string repeat(const std::string& line, std::size_t bytes) {
   std::string s;
   s.reserve(bytes + line.size());

@@ -98,6 +98,14 @@ struct Case {
 
 /// The arguments of Env::localize(extra, log, map), for a case that only runs localize.
 [[nodiscard]] MakeArgs localize_with(std::string extra, std::string log = "", std::string map = "");
+/// localize with `--config cfg.yaml`, cfg.yaml holding `yaml`.
+[[nodiscard]] MakeArgs localize_with_config(std::string yaml);
+/// localize on the map m.yaml, holding `yaml`.
+[[nodiscard]] MakeArgs localize_on_map_yaml(std::string yaml);
+/// `perturb-map --map <the base map> <options>`.
+[[nodiscard]] MakeArgs perturb_base_map(std::string options);
+/// `map --log <the base log> <options>`.
+[[nodiscard]] MakeArgs map_base_log(std::string options);
 
 /// The corpus, by issue-14 class.
 std::vector<Case> resource_cases();       // crashes, memory and time limits

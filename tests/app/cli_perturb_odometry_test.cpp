@@ -20,9 +20,7 @@ struct PerturbRun {
 /// Runs perturb on in.log with `extra` options; expects success.
 PerturbRun perturb(const TempDir& dir, const std::string& noise, const std::string& extra) {
   PerturbRun run;
-  run.result = run_pgmcl("perturb --log in.log --odom-noise " + noise +
-                             " --seed 9 --out raw.log --truth-out truth.tum " + extra,
-                         dir);
+  run.result = run_perturb(dir, "--odom-noise " + noise + " --seed 9 " + extra);
   EXPECT_EQ(run.result.code, 0) << run.result.err;
   run.out = read_output(dir);
   return run;

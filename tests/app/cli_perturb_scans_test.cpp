@@ -15,9 +15,7 @@ namespace pgmcl::perturb_test {
 namespace {
 
 RunResult perturb(const TempDir& dir, const std::string& noise, const std::string& extra) {
-  return run_pgmcl("perturb --log in.log --odom-noise " + noise +
-                       " --seed 4 --out raw.log --truth-out truth.tum " + extra,
-                   dir);
+  return run_perturb(dir, "--odom-noise " + noise + " --seed 4 " + extra);
 }
 
 /// Brute-force oracle of the thinning rules over the input poses (stamps 1.0 + 0.5 k).

@@ -20,9 +20,7 @@ TEST(CliPerturb, ZeroNoiseReproducesTruthIncrements) {
   TempDir dir("cli_perturb_zero");
   const auto poses = zigzag(50, 0.3, 0.4, -0.5);
   write_log(dir, poses);
-  const RunResult r = run_pgmcl(
-      "perturb --log in.log --odom-noise 0,0,0,0 --seed 3 --out raw.log --truth-out truth.tum",
-      dir);
+  const RunResult r = run_perturb(dir, "--odom-noise 0,0,0,0 --seed 3");
   ASSERT_EQ(r.code, 0) << r.err;
   const Output o = read_output(dir);
   ASSERT_EQ(o.truth.size(), poses.size());
@@ -50,12 +48,12 @@ TEST(CliPerturb, ZeroNoiseReproducesTruthIncrements) {
 TEST(CliPerturb, SeededRunsAreReproducible) {
   TempDir dir("cli_perturb_seed");
   write_log(dir, zigzag(40, 0.1, 0.5, 0.05));
-  const std::string base = "perturb --log in.log --odom-noise 0.01,0.001,0.01,0.001 ";
-  ASSERT_EQ(run_pgmcl(base + "--seed 11 --out raw.log --truth-out truth.tum", dir).code, 0);
+  const std::string noise = "--odom-noise 0.01,0.001,0.01,0.001 ";
+  ASSERT_EQ(run_perturb(dir, noise + "--seed 11").code, 0);
   const std::string a = cli_test::read_text(dir.file("raw.log"));
-  ASSERT_EQ(run_pgmcl(base + "--seed 11 --out raw.log --truth-out truth.tum", dir).code, 0);
+  ASSERT_EQ(run_perturb(dir, noise + "--seed 11").code, 0);
   EXPECT_EQ(cli_test::read_text(dir.file("raw.log")), a);
-  ASSERT_EQ(run_pgmcl(base + "--seed 12 --out raw.log --truth-out truth.tum", dir).code, 0);
+  ASSERT_EQ(run_perturb(dir, noise + "--seed 12").code, 0);
   EXPECT_NE(cli_test::read_text(dir.file("raw.log")), a);
 }
 
@@ -66,10 +64,7 @@ TEST(CliPerturb, IncrementNoiseMatchesTheAlphaModel) {
   const int n = 3001;
   write_log(dir, zigzag(n, rot1, trans, rot2), 1);
   const double a1 = 0.01, a2 = 0.002, a3 = 0.01, a4 = 0.004;
-  const RunResult r = run_pgmcl(
-      "perturb --log in.log --odom-noise 0.01,0.002,0.01,0.004 --seed 5 --out raw.log "
-      "--truth-out truth.tum --quiet",
-      dir);
+  const RunResult r = run_perturb(dir, "--odom-noise 0.01,0.002,0.01,0.004 --seed 5 --quiet");
   ASSERT_EQ(r.code, 0) << r.err;
   const Output o = read_output(dir);
   ASSERT_EQ(o.raw.odometry.size(), static_cast<std::size_t>(n));
@@ -100,10 +95,8 @@ TEST(CliPerturb, BiasScalesTranslationAndDriftsHeading) {
   TempDir dir("cli_perturb_bias");
   const auto poses = zigzag(20, 0.0, 0.5, 0.1);
   write_log(dir, poses);
-  const RunResult r = run_pgmcl(
-      "perturb --log in.log --odom-noise 0,0,0,0 --seed 1 --scale-bias 0.02 "
-      "--yaw-drift 0.5 --out raw.log --truth-out truth.tum",
-      dir);
+  const RunResult r =
+      run_perturb(dir, "--odom-noise 0,0,0,0 --seed 1 --scale-bias 0.02 --yaw-drift 0.5");
   ASSERT_EQ(r.code, 0) << r.err;
   const Output o = read_output(dir);
   for (std::size_t i = 1; i < poses.size(); ++i) {

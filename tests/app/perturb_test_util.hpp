@@ -39,6 +39,11 @@ inline void write_log(const cli_test::TempDir& dir, const std::vector<Pose2>& po
   io::write_carmen(dir.file("in.log"), cli_test::room_log(cli_test::Room{}, poses, beams));
 }
 
+/// `pgmcl perturb --log in.log <options> --out raw.log --truth-out truth.tum` in `dir`.
+inline RunResult run_perturb(const TempDir& dir, const std::string& options) {
+  return run_pgmcl("perturb --log in.log " + options + " --out raw.log --truth-out truth.tum", dir);
+}
+
 struct Output {
   io::CarmenLog raw;
   io::Trajectory truth;

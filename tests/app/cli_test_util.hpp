@@ -13,6 +13,7 @@
 #include "pgmcl/common/se2.hpp"
 #include "pgmcl/io/carmen.hpp"
 #include "pgmcl/io/carmen_writer.hpp"
+#include "room.hpp"
 #include "temp_files.hpp"
 
 namespace pgmcl::cli_test {
@@ -40,21 +41,7 @@ inline RunResult run_pgmcl(const std::string& args, const TempDir& dir) {
   return r;
 }
 
-/// A rectangular room [x0, x1] x [y0, y1] (walls off the 5 cm lattice).
-struct Room {
-  double x0 = 0.512, y0 = 0.371, x1 = 6.233, y1 = 4.907;
-
-  /// Exact range from inside the room along heading a.
-  [[nodiscard]] double range(double x, double y, double a) const {
-    const double dx = std::cos(a), dy = std::sin(a);
-    double t = 1e9;
-    if (dx > 1e-12) t = std::min(t, (x1 - x) / dx);
-    if (dx < -1e-12) t = std::min(t, (x0 - x) / dx);
-    if (dy > 1e-12) t = std::min(t, (y1 - y) / dy);
-    if (dy < -1e-12) t = std::min(t, (y0 - y) / dy);
-    return t;
-  }
-};
+using Room = testkit::Room;
 
 /// A corrected-style CARMEN log: one FLASER per pose (pose in x y theta and odom_*), SICK
 /// layout with `beams` beams, ranges from `room`; every `no_return_every`-th beam (if > 0)

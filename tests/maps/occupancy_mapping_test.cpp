@@ -10,23 +10,15 @@
 #include <utility>
 #include <vector>
 
+#include "room.hpp"
+
 namespace pgmcl::maps {
 namespace {
 
 // A rectangular room with walls off the cell lattice, scanned from poses inside it.
-constexpr double kX0 = 0.512, kY0 = 0.371, kX1 = 6.233, kY1 = 4.907;
+constexpr testkit::Room kRoom;
+constexpr double kX0 = kRoom.x0, kY0 = kRoom.y0, kX1 = kRoom.x1, kY1 = kRoom.y1;
 constexpr double kRes = 0.05;
-
-// Exact range from (x, y) along heading a to the room's walls (from the inside).
-double room_range(double x, double y, double a) {
-  const double dx = std::cos(a), dy = std::sin(a);
-  double t = 1e9;
-  if (dx > 1e-12) t = std::min(t, (kX1 - x) / dx);
-  if (dx < -1e-12) t = std::min(t, (kX0 - x) / dx);
-  if (dy > 1e-12) t = std::min(t, (kY1 - y) / dy);
-  if (dy < -1e-12) t = std::min(t, (kY0 - y) / dy);
-  return t;
-}
 
 // Distance from a point to the room's boundary (the four wall lines, clipped).
 double distance_to_walls(double x, double y) {
@@ -54,7 +46,7 @@ SyntheticScans make_room_scans() {
     const Pose2 p{3.4 + 1.6 * std::cos(phi), 2.6 + 1.2 * std::sin(phi), wrap_angle(3.0 * phi)};
     std::vector<float> r(n_beams);
     for (int i = 0; i < n_beams; ++i) {
-      r[i] = static_cast<float>(room_range(p.x, p.y, p.theta + amin + i * inc));
+      r[i] = static_cast<float>(kRoom.range(p.x, p.y, p.theta + amin + i * inc));
     }
     s.ranges.push_back(std::move(r));
     RangeScanView v;

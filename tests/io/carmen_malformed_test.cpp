@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "format_error.hpp"
 #include "io_test_util.hpp"
 #include "pgmcl/io/carmen.hpp"
 #include "pgmcl/io/errors.hpp"
@@ -93,28 +94,19 @@ TEST(CarmenMalformed, StrictModeThrowsFileLineField) {
   }
   CarmenReadOptions strict;
   strict.strict = true;
-  try {
-    (void)read_carmen(path, strict);
-    FAIL() << "strict mode accepted a malformed line";
-  } catch (const FormatError& e) {
-    EXPECT_EQ(e.line(), 5u);
-    EXPECT_EQ(e.field(), "num_readings");
-    EXPECT_EQ(std::string(e.what()),
-              path + ":5: num_readings: declares 5 readings but the line holds 6");
-  }
+  EXPECT_EQ(testkit::expect_format_error(
+                "strict mode accepted a malformed line", [&] { return read_carmen(path, strict); },
+                5, "num_readings"),
+            path + ":5: num_readings: declares 5 readings but the line holds 6");
   // Lenient reading of the same file agrees with the in-memory parse.
   EXPECT_EQ(read_carmen(path).report.malformed, 8u);
 
   // A backwards timestamp alone is an error in strict mode too.
   const std::string backwards = "ODOM 0 0 0 0 0 0 2 h 2\nNEFF 1\nODOM 0 0 0 0 0 0 1 h 1\n";
-  try {
-    (void)parse_carmen(backwards, "b.log", strict);
-    FAIL() << "strict mode accepted a backwards timestamp";
-  } catch (const FormatError& e) {
-    EXPECT_EQ(e.line(), 3u);
-    EXPECT_EQ(e.field(), "timestamp");
-    EXPECT_EQ(std::string(e.what()).rfind("b.log:3: timestamp: goes backwards", 0), 0u);
-  }
+  const std::string error = testkit::expect_format_error(
+      "strict mode accepted a backwards timestamp",
+      [&] { return parse_carmen(backwards, "b.log", strict); }, 3, "timestamp");
+  EXPECT_EQ(error.rfind("b.log:3: timestamp: goes backwards", 0), 0u) << error;
 }
 
 // Cutting a valid line after every possible field must always be reported, naming exactly
@@ -162,13 +154,9 @@ TEST(CarmenMalformed, RecordsPastTheMemoryLimitAreAnErrorAtTheirLine) {
   for (int i = 0; i < 50; ++i) text += "ODOM 0 0 0 0 0 0 " + std::to_string(i) + " h 0\n";
   CarmenReadOptions opt;
   opt.max_bytes = 20 * sizeof(OdomRecord);
-  try {
-    (void)parse_carmen(text, "big.log", opt);
-    ADD_FAILURE() << "50 records passed a limit of 20";
-  } catch (const FormatError& e) {
-    EXPECT_EQ(e.line(), 21u);
-    EXPECT_EQ(e.field(), "log");
-  }
+  (void)testkit::expect_format_error(
+      "50 records passed a limit of 20", [&] { return parse_carmen(text, "big.log", opt); }, 21,
+      "log");
   opt.max_bytes = 50 * sizeof(OdomRecord);
   EXPECT_EQ(parse_carmen(text, "big.log", opt).odometry.size(), 50u);
 }

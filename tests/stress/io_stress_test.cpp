@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "format_error.hpp"
 #include "pgmcl/io/carmen.hpp"
 #include "pgmcl/io/carmen_writer.hpp"
 #include "pgmcl/io/errors.hpp"
@@ -59,14 +60,10 @@ TEST(StressCarmen, BeamCountDisagreeingWithItsHeaderIsCountedAndReported) {
 
   CarmenReadOptions strict;
   strict.strict = true;
-  try {
-    (void)parse_carmen(text, "utm.log", strict);
-    ADD_FAILURE() << "strict mode accepted a miscounted scan";
-  } catch (const FormatError& e) {
-    EXPECT_EQ(e.line(), 2u);
-    EXPECT_EQ(e.field(), "num_readings");
-    EXPECT_NE(std::string(e.what()).find("utm.log:2: num_readings"), std::string::npos);
-  }
+  const std::string error = testkit::expect_format_error(
+      "strict mode accepted a miscounted scan",
+      [&] { return parse_carmen(text, "utm.log", strict); }, 2, "num_readings");
+  EXPECT_NE(error.find("utm.log:2: num_readings"), std::string::npos) << error;
 }
 
 TEST(StressCarmen, FlaserWithOneReadingTooFewOrTooMany) {

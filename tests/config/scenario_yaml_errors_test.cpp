@@ -14,144 +14,85 @@ namespace {
 using test::ScenarioYaml;
 
 TEST_F(ScenarioYaml, UnknownKeysAreReportedWithTheirLine) {
-  ScenarioError e = error("seed: 3\nduraton: 5\n");
-  EXPECT_EQ(e.field(), "duraton");
-  EXPECT_EQ(e.line(), 3U);
-  EXPECT_NE(std::string(e.what()).find("unknown key"), std::string::npos);
-
-  e = error("robot:\n  motion: waypoints\n  waypoints:\n    points: [[1, 1]]\n    lookahed: 1\n");
-  EXPECT_EQ(e.field(), "robot.waypoints.lookahed");
-  EXPECT_EQ(e.line(), 6U);
-
-  e = error(
-      "obstacles:\n  discs:\n    - {radius: 0.2, path: {waypoints: [[1, 1]]}, colour: red}\n");
-  EXPECT_EQ(e.field(), "obstacles.discs[0].colour");
-  EXPECT_EQ(e.line(), 4U);
+  expect_errors({
+      {"seed: 3\nduraton: 5\n", "duraton", 3, "unknown key"},
+      {"robot:\n  motion: waypoints\n  waypoints:\n    points: [[1, 1]]\n    lookahed: 1\n",
+       "robot.waypoints.lookahed", 6},
+      {"obstacles:\n  discs:\n    - {radius: 0.2, path: {waypoints: [[1, 1]]}, colour: red}\n",
+       "obstacles.discs[0].colour", 4},
+  });
 }
 
 TEST_F(ScenarioYaml, FilterSettingsAreRejectedWithWhereTheyBelong) {
   // No command applies filter settings from a scenario: accepting them would ignore them.
-  const ScenarioError e = error("seed: 3\nfilter:\n  particles: 500\n");
-  EXPECT_EQ(e.field(), "filter");
-  EXPECT_EQ(e.line(), 4U);  // the mapping's first line, as for every value (yaml_reader.hpp)
-  EXPECT_NE(e.message().find("experiment file"), std::string::npos);
+  // Line 4 is the mapping's first line, as for every value (yaml_reader.hpp).
+  expect_errors({{"seed: 3\nfilter:\n  particles: 500\n", "filter", 4, "experiment file"}});
 }
 
 TEST_F(ScenarioYaml, WrongTypesNameTheKey) {
-  ScenarioError e = error("duration: fast\n");
-  EXPECT_EQ(e.field(), "duration");
-  EXPECT_EQ(e.line(), 2U);
-  EXPECT_NE(e.message().find("expected a number"), std::string::npos);
-
-  e = error("seed: -3\n");
-  EXPECT_EQ(e.field(), "seed");
-
-  e = error("sensor:\n  beam_count: 10.5\n");
-  EXPECT_EQ(e.field(), "sensor.beam_count");
-  EXPECT_EQ(e.line(), 3U);
-
-  e = error("robot:\n  start: [1, 2]\n");
-  EXPECT_EQ(e.field(), "robot.start");
-  EXPECT_NE(e.message().find("[x, y, theta]"), std::string::npos);
-
-  e = error("robot:\n  waypoints:\n    points:\n      - [1, 1]\n      - [2, two]\n");
-  EXPECT_EQ(e.field(), "robot.waypoints.points[1][1]");
-  EXPECT_EQ(e.line(), 6U);
-
-  e = error("noise:\n  dropouts: {enabled: maybe}\n");
-  EXPECT_EQ(e.field(), "noise.dropouts.enabled");
-
-  e = error("robot: [1, 2]\n");
-  EXPECT_EQ(e.field(), "robot");
-  EXPECT_NE(e.message().find("mapping"), std::string::npos);
-
-  e = error("kidnaps: {time: 1}\n");
-  EXPECT_EQ(e.field(), "kidnaps");
+  expect_errors({
+      {"duration: fast\n", "duration", 2, "expected a number"},
+      {"seed: -3\n", "seed"},
+      {"sensor:\n  beam_count: 10.5\n", "sensor.beam_count", 3},
+      {"robot:\n  start: [1, 2]\n", "robot.start", 0, "[x, y, theta]"},
+      {"robot:\n  waypoints:\n    points:\n      - [1, 1]\n      - [2, two]\n",
+       "robot.waypoints.points[1][1]", 6},
+      {"noise:\n  dropouts: {enabled: maybe}\n", "noise.dropouts.enabled"},
+      {"robot: [1, 2]\n", "robot", 0, "mapping"},
+      {"kidnaps: {time: 1}\n", "kidnaps"},
+  });
 }
 
 TEST_F(ScenarioYaml, BadNamesListTheChoices) {
-  ScenarioError e = error("robot: {motion: fly}\n");
-  EXPECT_EQ(e.field(), "robot.motion");
-  EXPECT_NE(e.message().find("random_walk"), std::string::npos);
-
-  e = error("sensor: {profile: lidar9000}\n");
-  EXPECT_EQ(e.field(), "sensor.profile");
-  EXPECT_NE(e.message().find("hokuyo_utm30lx"), std::string::npos);
-
-  e = error("raycast: {unknown: maybe}\n");
-  EXPECT_EQ(e.field(), "raycast.unknown");
+  expect_errors({
+      {"robot: {motion: fly}\n", "robot.motion", 0, "random_walk"},
+      {"sensor: {profile: lidar9000}\n", "sensor.profile", 0, "hokuyo_utm30lx"},
+      {"raycast: {unknown: maybe}\n", "raycast.unknown"},
+  });
 }
 
 TEST_F(ScenarioYaml, SyntaxDuplicatesAndMissingKeys) {
-  ScenarioError e = error("seed: [1, 2\n");
+  const ScenarioError e = error("seed: [1, 2\n");
   EXPECT_EQ(e.field(), "yaml");
   EXPECT_GE(e.line(), 2U);
-
-  e = error("seed: 1\nseed: 2\n");
-  EXPECT_EQ(e.field(), "seed");
-  EXPECT_EQ(e.line(), 3U);
-  EXPECT_NE(e.message().find("duplicate"), std::string::npos);
-
-  e = error("seed: 1\n", /*with_map=*/false);
-  EXPECT_EQ(e.field(), "map");
-  EXPECT_NE(e.message().find("missing"), std::string::npos);
-
-  e = error("kidnaps:\n  - {pose: [1, 1, 0]}\n");
-  EXPECT_EQ(e.field(), "kidnaps[0].time");
-  EXPECT_EQ(e.line(), 3U);
+  expect_errors({
+      {"seed: 1\nseed: 2\n", "seed", 3, "duplicate"},
+      {"seed: 1\n", "map", 0, "missing", /*with_map=*/false},
+      {"kidnaps:\n  - {pose: [1, 1, 0]}\n", "kidnaps[0].time", 3},
+  });
 }
 
 TEST_F(ScenarioYaml, MapProblemsPointAtTheMapKey) {
-  const ScenarioError e = error("seed: 1\nmap: ../maps/nowhere.yaml\n", /*with_map=*/false);
-  EXPECT_EQ(e.field(), "map");
-  EXPECT_EQ(e.line(), 2U);
-  EXPECT_NE(e.message().find("nowhere.yaml"), std::string::npos);
+  expect_errors({{"seed: 1\nmap: ../maps/nowhere.yaml\n", "map", 2, "nowhere.yaml",
+                  /*with_map=*/false}});
 }
 
 TEST_F(ScenarioYaml, ChecksAgainstTheMapAreReportedAtTheirKey) {
   // The room spans x in [-1, 3], y in [-0.5, 2.5].
-  ScenarioError e = error("robot:\n  motion: stationary\n  start: [10, 1, 0]\n");
-  EXPECT_EQ(e.field(), "robot.start");
-  EXPECT_EQ(e.line(), 4U);
-  EXPECT_NE(e.message().find("inside the map"), std::string::npos);
-
-  e = error(
-      "robot: {motion: stationary}\nkidnaps:\n  - {time: 1, pose: [1, 1, 0]}\n"
-      "  - {time: 2, pose: [1, 9, 0]}\n");
-  EXPECT_EQ(e.field(), "kidnaps[1].pose");
-  EXPECT_EQ(e.line(), 5U);
-
-  e = error(
-      "robot: {motion: stationary}\nsurfaces:\n  regions:\n"
-      "    - {material: marble, min: [0, 0], max: [1, 1]}\n");
-  EXPECT_EQ(e.field(), "surfaces.regions[0].material");
-  EXPECT_EQ(e.line(), 5U);
-  EXPECT_NE(e.message().find("marble"), std::string::npos);
-
-  e = error(
-      "robot: {motion: stationary}\nobstacles:\n  boxes:\n"
-      "    - {material: marble, path: {waypoints: [[1, 1]]}}\n");
-  EXPECT_EQ(e.field(), "obstacles.boxes[0].material");
-
-  e = error("robot:\n  motion: stationary\n  limits: {max_v: 0}\n");
-  EXPECT_EQ(e.field(), "robot.limits.max_v");
-  EXPECT_EQ(e.line(), 4U);
+  expect_errors({
+      {"robot:\n  motion: stationary\n  start: [10, 1, 0]\n", "robot.start", 4, "inside the map"},
+      {"robot: {motion: stationary}\nkidnaps:\n  - {time: 1, pose: [1, 1, 0]}\n"
+       "  - {time: 2, pose: [1, 9, 0]}\n",
+       "kidnaps[1].pose", 5},
+      {"robot: {motion: stationary}\nsurfaces:\n  regions:\n"
+       "    - {material: marble, min: [0, 0], max: [1, 1]}\n",
+       "surfaces.regions[0].material", 5, "marble"},
+      {"robot: {motion: stationary}\nobstacles:\n  boxes:\n"
+       "    - {material: marble, path: {waypoints: [[1, 1]]}}\n",
+       "obstacles.boxes[0].material"},
+      {"robot:\n  motion: stationary\n  limits: {max_v: 0}\n", "robot.limits.max_v", 4},
+  });
 }
 
 TEST_F(ScenarioYaml, StructChecksAreReportedAtTheirMapping) {
-  ScenarioError e = error("sensor:\n  range_min: 5\n  range_max: 1\n");
-  EXPECT_EQ(e.field(), "sensor");
-  EXPECT_EQ(e.line(), 3U);
-
-  e = error("noise:\n  dropouts: {rate: 1.5}\n");
-  EXPECT_EQ(e.field(), "noise");
-
-  e = error("surfaces:\n  materials:\n    - {name: odd, sigma_normal: 0.01, sigma_45: 0.001}\n");
-  EXPECT_EQ(e.field(), "surfaces.materials[0]");
-  EXPECT_EQ(e.line(), 4U);
-
-  e = error("obstacles:\n  discs:\n    - {radius: 0.2, path: {waypoints: [[1, 1]], speed: -1}}\n");
-  EXPECT_EQ(e.field(), "obstacles.discs[0].path");
+  expect_errors({
+      {"sensor:\n  range_min: 5\n  range_max: 1\n", "sensor", 3},
+      {"noise:\n  dropouts: {rate: 1.5}\n", "noise"},
+      {"surfaces:\n  materials:\n    - {name: odd, sigma_normal: 0.01, sigma_45: 0.001}\n",
+       "surfaces.materials[0]", 4},
+      {"obstacles:\n  discs:\n    - {radius: 0.2, path: {waypoints: [[1, 1]], speed: -1}}\n",
+       "obstacles.discs[0].path"},
+  });
 }
 
 TEST_F(ScenarioYaml, ErrorIsAFormatErrorWithFileLineKeyInWhat) {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <initializer_list>
 #include <string>
 
 #include "io_test_util.hpp"
@@ -42,6 +43,28 @@ class ScenarioYaml : public ::testing::Test {
     }
     ADD_FAILURE() << "no ScenarioError for:\n" << body;
     return ScenarioError(path, 0, "", "");
+  }
+  /// A bad body and where its error must point: the key, its line (0: not checked) and a
+  /// piece of its message ("": not checked).
+  struct Bad {
+    std::string body;
+    std::string field;
+    unsigned line = 0;
+    std::string message{};
+    bool with_map = true;
+  };
+  void expect_errors(std::initializer_list<Bad> cases) {
+    for (const Bad& c : cases) {
+      SCOPED_TRACE(c.body);
+      const ScenarioError e = error(c.body, c.with_map);
+      EXPECT_EQ(e.field(), c.field);
+      if (c.line != 0) {
+        EXPECT_EQ(e.line(), c.line);
+      }
+      if (!c.message.empty()) {
+        EXPECT_NE(e.message().find(c.message), std::string::npos) << e.what();
+      }
+    }
   }
   TempDir dir_;
 };

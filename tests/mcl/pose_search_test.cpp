@@ -43,14 +43,20 @@ struct Fixture {
     select_beams(valid, BeamSelection{}, selected);
     model.prepare(scan, selected);
   }
+
+  // A search over the room's free cells, given the scan seen from `robot`.
+  PoseSearch search_from(const Pose2& robot) {
+    prepare(robot);
+    PoseSearch search(*field, free_cells);
+    EXPECT_TRUE(search.set_scan(model.beams()));
+    return search;
+  }
 };
 
 TEST(PoseSearch, BranchAndBoundFindsTheExhaustiveOptimum) {
   Fixture f;
   const Pose2 robot{3.1, 4.3, 0.4};
-  f.prepare(robot);
-  PoseSearch search(*f.field, f.free_cells);
-  ASSERT_TRUE(search.set_scan(f.model.beams()));
+  PoseSearch search = f.search_from(robot);
   PoseSearchQuery q;
   q.max_candidates = 1;
   const PoseSearchResult best = search.search(q);
@@ -89,9 +95,7 @@ TEST(PoseSearch, BranchAndBoundFindsTheExhaustiveOptimum) {
 TEST(PoseSearch, CandidatesAreDistinctAndSortedAndRespectTheWindow) {
   Fixture f;
   const Pose2 robot{7.9, 2.6, -2.0};
-  f.prepare(robot);
-  PoseSearch search(*f.field, f.free_cells);
-  ASSERT_TRUE(search.set_scan(f.model.beams()));
+  PoseSearch search = f.search_from(robot);
   PoseSearchQuery q;
   q.max_candidates = 10;
   const PoseSearchResult r = search.search(q);
@@ -134,9 +138,7 @@ TEST(PoseSearch, CandidatesAreDistinctAndSortedAndRespectTheWindow) {
 
 TEST(PoseSearch, BudgetTruncatesAndSlicesCoverTheMap) {
   Fixture f;
-  f.prepare({5.2, 6.1, 1.0});
-  PoseSearch search(*f.field, f.free_cells);
-  ASSERT_TRUE(search.set_scan(f.model.beams()));
+  PoseSearch search = f.search_from({5.2, 6.1, 1.0});
   PoseSearchQuery q;
   q.max_candidates = 1;
   const PoseSearchResult full = search.search(q);

@@ -16,14 +16,10 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace pgmcl;
-  std::vector<io::Relation> rel;
-  try {
-    rel = io::parse_relations(fuzz::as_text(data, size), "fuzz.relations");
-  } catch (const io::FormatError&) {
-    return 0;
-  } catch (const std::exception& e) {
-    fuzz::undocumented(e);
-  }
+  const auto parsed = fuzz::accepted<io::FormatError>(
+      [&] { return io::parse_relations(fuzz::as_text(data, size), "fuzz.relations"); });
+  if (!parsed) return 0;
+  const std::vector<io::Relation>& rel = *parsed;
   {
     const std::string path = fuzz::write_scratch("fuzz.relations", fuzz::as_text(data, size));
     std::string file;

@@ -10,6 +10,7 @@
 #include <numbers>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "fuzz_util.hpp"
 #include "pgmcl/io/errors.hpp"
@@ -31,14 +32,10 @@ void check_pose(const io::StampedPose& p, const char* what) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  io::Trajectory t;
-  try {
-    t = io::parse_tum(fuzz::as_text(data, size), "fuzz.tum");
-  } catch (const io::FormatError&) {
-    return 0;
-  } catch (const std::exception& e) {
-    fuzz::undocumented(e);
-  }
+  auto parsed = fuzz::accepted<io::FormatError>(
+      [&] { return io::parse_tum(fuzz::as_text(data, size), "fuzz.tum"); });
+  if (!parsed) return 0;
+  io::Trajectory t = *std::move(parsed);
   {
     const std::string path = fuzz::write_scratch("fuzz.tum", fuzz::as_text(data, size));
     const std::string mem = fuzz::outcome<io::FormatError>(

@@ -10,6 +10,7 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -82,6 +83,19 @@ inline std::string_view as_text(const std::uint8_t* data, std::size_t size) {
 }  // namespace pgmcl::fuzz
 
 namespace pgmcl::fuzz {
+
+/// `parse()`'s value, or nullopt when it throws the documented exception E; any other
+/// exception is a finding.
+template <class E, class F>
+auto accepted(F&& parse) -> std::optional<decltype(parse())> {
+  try {
+    return parse();
+  } catch (const E&) {
+    return std::nullopt;
+  } catch (const std::exception& e) {
+    undocumented(e);
+  }
+}
 
 /// Runs `parse` (a callable returning a value or throwing) and returns its outcome as
 /// "ok" or "<line>:<field>" of the FormatError-like exception E it threw.

@@ -3,6 +3,7 @@
 // (nav2 map_saver trinary semantics, documented in maps/map_io.hpp).
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -45,6 +46,16 @@ inline void check_save_reload(const maps::OccupancyGrid& g) {
       fail("reload changed a cell",
            std::to_string(i) + ": " + std::to_string(v) + " -> " + std::to_string(back.cells()[i]));
   }
+}
+
+/// Grids up to this many cells also go through the save/reload oracle; larger ones would cost
+/// the fuzzer too much time per input.
+inline constexpr std::size_t kMaxRoundTripCells = std::size_t{1} << 20;
+
+/// check_loaded_grid, then check_save_reload for a grid of at most kMaxRoundTripCells.
+inline void check_loaded_map(const maps::OccupancyGrid& g, const maps::MapMetadata& meta) {
+  check_loaded_grid(g, meta);
+  if (g.size() <= kMaxRoundTripCells) check_save_reload(g);
 }
 
 }  // namespace pgmcl::fuzz

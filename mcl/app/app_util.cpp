@@ -84,6 +84,14 @@ CLI::Validator filter_file() {
   return file_kind({io::FileKind::kFilterYaml, io::FileKind::kOtherYaml},
                    "a filter configuration (configs/filters/)");
 }
+CLI::Validator experiment_file() {
+  return file_kind({io::FileKind::kExperiment, io::FileKind::kOtherYaml},
+                   "an experiment file (map + data + filter; configs/experiments/)");
+}
+CLI::Validator scenario_file() {
+  return file_kind({io::FileKind::kScenario, io::FileKind::kOtherYaml},
+                   "a scenario (configs/scenarios/)");
+}
 CLI::Validator relations_file() {
   return file_kind({io::FileKind::kNumberTable},
                    "a relations file (t1 t2 x y z roll pitch yaw per line)");

@@ -35,11 +35,13 @@ namespace pgmcl::app {
 [[nodiscard]] CLI::Validator file_kind(std::initializer_list<io::FileKind> accepted,
                                        std::string wanted);
 /// The common ones: a map YAML, a CARMEN log, a TUM trajectory (or, with `log_ok`, a
-/// corrected CARMEN log), a filter configuration, a relations file.
+/// corrected CARMEN log), a filter configuration, an experiment, a scenario, a relations file.
 [[nodiscard]] CLI::Validator map_file();
 [[nodiscard]] CLI::Validator log_file();
 [[nodiscard]] CLI::Validator trajectory_file(bool log_ok);
 [[nodiscard]] CLI::Validator filter_file();
+[[nodiscard]] CLI::Validator experiment_file();
+[[nodiscard]] CLI::Validator scenario_file();
 [[nodiscard]] CLI::Validator relations_file();
 
 /// A length with an optional unit ("5", "5mm", "0.5cm", "0.005m"), converted to `unit`

@@ -252,6 +252,7 @@ int run_calibrate(const CalibrateOptions& o) {
 }
 
 void add_calibrate_options(CLI::App& sub, CalibrateOptions& o) {
+  sub.description("Estimate the beam model's sigmas (Dekan et al. Sec. 4)");
   sub.require_subcommand(1);
 
   RangeOptions& r = o.range;
@@ -306,9 +307,7 @@ void add_calibrate_options(CLI::App& sub, CalibrateOptions& o) {
 }  // namespace
 
 Command add_calibrate_command(CLI::App& app) {
-  return make_command<CalibrateOptions>(app, "calibrate",
-                                        "Estimate the beam model's sigmas (Dekan et al. Sec. 4)",
-                                        add_calibrate_options, run_calibrate);
+  return make_command<CalibrateOptions>(app, "calibrate", add_calibrate_options, run_calibrate);
 }
 
 }  // namespace pgmcl::app

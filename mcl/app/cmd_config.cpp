@@ -40,6 +40,7 @@ int run_config(const ConfigOptions& o) {
 }
 
 void add_config_options(CLI::App& sub, ConfigOptions& o) {
+  sub.description("Print the filter configuration after --config and --set, or the key reference");
   const FilterOptions filter = add_filter_options(sub, o.config, o.sets);
   auto* ref = sub.add_flag("--reference", o.reference,
                            "Print every key with its default, unit and allowed values (Markdown)");
@@ -54,10 +55,7 @@ void add_config_options(CLI::App& sub, ConfigOptions& o) {
 }  // namespace
 
 Command add_config_command(CLI::App& app) {
-  return make_command<ConfigOptions>(
-      app, "config",
-      "Print the filter configuration after --config and --set, or the key reference",
-      add_config_options, run_config);
+  return make_command<ConfigOptions>(app, "config", add_config_options, run_config);
 }
 
 }  // namespace pgmcl::app

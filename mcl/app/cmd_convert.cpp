@@ -74,6 +74,7 @@ int run_convert(const ConvertOptions& o) {
 }
 
 void add_convert_options(CLI::App& sub, ConvertOptions& o) {
+  sub.description("Write a CARMEN log as a ROS 1 bag (/scan, /tf, /tf_static, /odom), or back");
   sub.add_option("--log", o.in, "Input: a CARMEN log (.log, .clf, optionally .gz) or a .bag")
       ->required()
       ->check(CLI::ExistingFile);
@@ -89,9 +90,7 @@ void add_convert_options(CLI::App& sub, ConvertOptions& o) {
 }  // namespace
 
 Command add_convert_command(CLI::App& app) {
-  return make_command<ConvertOptions>(
-      app, "convert", "Write a CARMEN log as a ROS 1 bag (/scan, /tf, /tf_static, /odom), or back",
-      add_convert_options, run_convert);
+  return make_command<ConvertOptions>(app, "convert", add_convert_options, run_convert);
 }
 
 }  // namespace pgmcl::app

@@ -103,6 +103,7 @@ int run_eval(EvalOptions o) {
 }
 
 void add_eval_options(CLI::App& sub, EvalOptions& o) {
+  sub.description("Evaluate an estimated trajectory");
   add_input_file(sub, "--estimate", o.estimate, "Estimated trajectory (TUM)",
                  trajectory_file(false))
       ->required();
@@ -136,8 +137,7 @@ void add_eval_options(CLI::App& sub, EvalOptions& o) {
 }  // namespace
 
 Command add_eval_command(CLI::App& app) {
-  return make_command<EvalOptions>(app, "eval", "Evaluate an estimated trajectory",
-                                   add_eval_options, run_eval);
+  return make_command<EvalOptions>(app, "eval", add_eval_options, run_eval);
 }
 
 }  // namespace pgmcl::app

@@ -65,6 +65,7 @@ int run_kernel(const KernelOptions& o) {
 }
 
 void add_kernel_options(CLI::App& sub, KernelOptions& o) {
+  sub.description("Print the tabular beam model (Dekan et al., Table 5) for given sigmas");
   // Millimetres, as Dekan et al.'s tables; a unit may be given ("0.05m" is 50 mm). Sigmas up
   // to 10 m, the filter's bound on a sigma (config_schema::kSigma); cells from 1 µm to 1 km.
   const auto millimetres = [&sub](const std::string& name, double& value, const std::string& help,
@@ -92,9 +93,7 @@ void add_kernel_options(CLI::App& sub, KernelOptions& o) {
 }  // namespace
 
 Command add_kernel_command(CLI::App& app) {
-  return make_command<KernelOptions>(
-      app, "kernel", "Print the tabular beam model (Dekan et al., Table 5) for given sigmas",
-      add_kernel_options, run_kernel);
+  return make_command<KernelOptions>(app, "kernel", add_kernel_options, run_kernel);
 }
 
 }  // namespace pgmcl::app

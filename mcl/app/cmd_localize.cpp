@@ -99,6 +99,7 @@ int run_localize(const LocalizeOptions& o) {
 }
 
 void add_localize_options(CLI::App& sub, LocalizeOptions& o) {
+  sub.description("Localise a logged robot on a map");
   add_input_file(sub, "--map", o.map, "Map YAML (ROS map_server)", map_file())->required();
   auto* log =
       add_input_file(sub, "--log", o.log, "CARMEN log (.log, .clf, optionally .gz)", log_file());
@@ -128,8 +129,7 @@ void add_localize_options(CLI::App& sub, LocalizeOptions& o) {
 }  // namespace
 
 Command add_localize_command(CLI::App& app) {
-  return make_command<LocalizeOptions>(app, "localize", "Localise a logged robot on a map",
-                                       add_localize_options, run_localize);
+  return make_command<LocalizeOptions>(app, "localize", add_localize_options, run_localize);
 }
 
 }  // namespace pgmcl::app

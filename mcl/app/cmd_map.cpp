@@ -154,6 +154,7 @@ int run_map(const MapOptions& o) {
 }
 
 void add_map_options(CLI::App& sub, MapOptions& o) {
+  sub.description("Build an occupancy map from a log with known (corrected) poses");
   add_input_file(sub, "--log", o.log, "Corrected CARMEN log (.gz ok)", log_file())->required();
   sub.add_option("--out", o.out, "Output map YAML (the image is written next to it)")->required();
   sub.add_option("--image", o.image,
@@ -186,9 +187,7 @@ void add_map_options(CLI::App& sub, MapOptions& o) {
 }  // namespace
 
 Command add_map_command(CLI::App& app) {
-  return make_command<MapOptions>(app, "map",
-                                  "Build an occupancy map from a log with known (corrected) poses",
-                                  add_map_options, run_map);
+  return make_command<MapOptions>(app, "map", add_map_options, run_map);
 }
 
 }  // namespace pgmcl::app

@@ -229,6 +229,8 @@ int run_perturb(const PerturbOptions& o) {
 }
 
 void add_perturb_options(CLI::App& sub, PerturbOptions& o) {
+  sub.description(
+      "Make a raw log with noisy odometry (and stress conditions) from a corrected log");
   add_input_file(sub, "--log", o.log, "Corrected CARMEN log", log_file())->required();
   sub.add_option("--odom-noise", o.text.noise,
                  "A1,A2,A3,A4: Probabilistic Robotics Table 5.6 alphas, variance form "
@@ -288,10 +290,7 @@ void add_perturb_options(CLI::App& sub, PerturbOptions& o) {
 }  // namespace
 
 Command add_perturb_command(CLI::App& app) {
-  return make_command<PerturbOptions>(
-      app, "perturb",
-      "Make a raw log with noisy odometry (and stress conditions) from a corrected log",
-      add_perturb_options, run_perturb);
+  return make_command<PerturbOptions>(app, "perturb", add_perturb_options, run_perturb);
 }
 
 }  // namespace pgmcl::app

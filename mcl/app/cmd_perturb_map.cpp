@@ -172,6 +172,7 @@ int run_perturb_map(const PerturbMapOptions& o) {
 }
 
 void add_perturb_map_options(CLI::App& sub, PerturbMapOptions& o) {
+  sub.description("Make a degraded copy of a map (blurred, thickened or missing walls)");
   add_input_file(sub, "--map", o.map, "Input ROS map YAML", map_file())->required();
   sub.add_option("--out", o.out,
                  "Output map YAML; the image goes next to it (<stem>.pgm, or <stem>.png for "
@@ -194,9 +195,8 @@ void add_perturb_map_options(CLI::App& sub, PerturbMapOptions& o) {
 }  // namespace
 
 Command add_perturb_map_command(CLI::App& app) {
-  return make_command<PerturbMapOptions>(
-      app, "perturb-map", "Make a degraded copy of a map (blurred, thickened or missing walls)",
-      add_perturb_map_options, run_perturb_map);
+  return make_command<PerturbMapOptions>(app, "perturb-map", add_perturb_map_options,
+                                         run_perturb_map);
 }
 
 }  // namespace pgmcl::app

@@ -167,10 +167,8 @@ int run_run(const RunOptions& o) {
 }
 
 void add_run_options(CLI::App& sub, RunOptions& o) {
-  add_input_file(sub, "experiment", o.experiment, "Experiment YAML",
-                 file_kind({io::FileKind::kExperiment, io::FileKind::kOtherYaml},
-                           "an experiment file (map + data + filter; configs/experiments/)"))
-      ->required();
+  sub.description("Run an experiment file (map + data + filter)");
+  add_input_file(sub, "experiment", o.experiment, "Experiment YAML", experiment_file())->required();
   sub.add_option("--out", o.out, "Output directory (default: the experiment's `out`)");
   sub.add_option("--set", o.sets,
                  "Override a key: a filter key as in localize (filter.particles=500), or name, "
@@ -184,8 +182,7 @@ void add_run_options(CLI::App& sub, RunOptions& o) {
 }  // namespace
 
 Command add_run_command(CLI::App& app) {
-  return make_command<RunOptions>(app, "run", "Run an experiment file (map + data + filter)",
-                                  add_run_options, run_run);
+  return make_command<RunOptions>(app, "run", add_run_options, run_run);
 }
 
 }  // namespace pgmcl::app

@@ -79,9 +79,8 @@ int run_simulate(const SimulateOptions& o) {
 }
 
 void add_simulate_options(CLI::App& sub, SimulateOptions& o) {
-  add_input_file(sub, "scenario", o.scenario, "Scenario YAML (configs/scenarios/)",
-                 file_kind({io::FileKind::kScenario, io::FileKind::kOtherYaml},
-                           "a scenario (configs/scenarios/)"))
+  sub.description("Simulate a scenario into a CARMEN log");
+  add_input_file(sub, "scenario", o.scenario, "Scenario YAML (configs/scenarios/)", scenario_file())
       ->required();
   sub.add_option("--out", o.out, "Output CARMEN log (.gz ok)")->required();
   auto* truth = sub.add_option("--truth-out", o.truth, "Also write the true trajectory (TUM)")
@@ -101,8 +100,7 @@ void add_simulate_options(CLI::App& sub, SimulateOptions& o) {
 }  // namespace
 
 Command add_simulate_command(CLI::App& app) {
-  return make_command<SimulateOptions>(app, "simulate", "Simulate a scenario into a CARMEN log",
-                                       add_simulate_options, run_simulate);
+  return make_command<SimulateOptions>(app, "simulate", add_simulate_options, run_simulate);
 }
 
 }  // namespace pgmcl::app

@@ -16,13 +16,13 @@ struct Command {
 };
 
 /// Registers subcommand `name` whose options fill one `Options` struct: `declare(sub, options)`
-/// adds them, and the returned command calls `run(options)`. The struct lives in the closure,
-/// so the pointers CLI11 keeps into it stay valid for as long as the command.
+/// adds them (and the subcommand's description), and the returned command calls
+/// `run(options)`. The struct lives in the closure, so the pointers CLI11 keeps into it stay
+/// valid for as long as the command.
 template <class Options, class Declare, class Run>
-Command make_command(CLI::App& app, const std::string& name, const std::string& description,
-                     Declare declare, Run run) {
+Command make_command(CLI::App& app, const std::string& name, Declare declare, Run run) {
   auto options = std::make_shared<Options>();
-  CLI::App* sub = app.add_subcommand(name, description);
+  CLI::App* sub = app.add_subcommand(name);
   declare(*sub, *options);
   return {sub, [options, run] { return run(*options); }};
 }

@@ -1,14 +1,12 @@
 #include "pgmcl/io/file_kind.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cctype>
 #include <filesystem>
 #include <set>
 #include <sstream>
 #include <string_view>
 
-#include "pgmcl/common/enum_names.hpp"
 #include "pgmcl/io/errors.hpp"
 #include "pgmcl/io/line_io.hpp"
 #include "pgmcl/io/values.hpp"
@@ -110,20 +108,31 @@ std::string advice(FileKind got, const std::string& path) {
 }  // namespace
 
 const char* describe(FileKind kind) noexcept {
-  static constexpr std::array<EnumName<FileKind>, 11> kDescriptions{{
-      {FileKind::kUnknown, "a file of unknown kind"},
-      {FileKind::kEmpty, "empty"},
-      {FileKind::kPgmImage, "a PGM image"},
-      {FileKind::kPngImage, "a PNG image"},
-      {FileKind::kMapYaml, "a map YAML (map_server)"},
-      {FileKind::kFilterYaml, "a filter configuration"},
-      {FileKind::kExperiment, "an experiment file (pgmcl run)"},
-      {FileKind::kScenario, "a simulated scenario (pgmcl simulate)"},
-      {FileKind::kOtherYaml, "a YAML file"},
-      {FileKind::kCarmenLog, "a CARMEN log"},
-      {FileKind::kNumberTable, "a TUM trajectory (8 numbers per line)"},
-  }};
-  return name_of(kind, kDescriptions);
+  switch (kind) {
+    case FileKind::kUnknown:
+      return "a file of unknown kind";
+    case FileKind::kEmpty:
+      return "empty";
+    case FileKind::kPgmImage:
+      return "a PGM image";
+    case FileKind::kPngImage:
+      return "a PNG image";
+    case FileKind::kMapYaml:
+      return "a map YAML (map_server)";
+    case FileKind::kFilterYaml:
+      return "a filter configuration";
+    case FileKind::kExperiment:
+      return "an experiment file (pgmcl run)";
+    case FileKind::kScenario:
+      return "a simulated scenario (pgmcl simulate)";
+    case FileKind::kOtherYaml:
+      return "a YAML file";
+    case FileKind::kCarmenLog:
+      return "a CARMEN log";
+    case FileKind::kNumberTable:
+      return "a TUM trajectory (8 numbers per line)";
+  }
+  return "?";
 }
 
 FileKind detect_file_kind(const std::string& path) noexcept {

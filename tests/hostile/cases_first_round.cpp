@@ -84,10 +84,8 @@ std::vector<Case> first_round_cases() {
                          localize_with_config("filter:\n  particels: 100\n"),
                          {"cfg.yaml:2", "particels", "particles"}));
   c.push_back(error_case("config_not_yaml", 1, localize_with_config("filter: [\n"), {"cfg.yaml"}));
-  c.push_back(error_case("set_unknown_key", 1, localize_with("--set filter.particle=10"),
-                         {"filter.particle"}));
-  c.push_back(error_case("set_not_a_number", 1, localize_with("--set filter.particles=many"),
-                         {"filter.particles"}));
+  c.push_back(bad_setting("set_unknown_key", "filter.particle=10", {"filter.particle"}));
+  c.push_back(bad_setting("set_not_a_number", "filter.particles=many", {"filter.particles"}));
   c.push_back(error_case(
       "map_missing_resolution", 1,
       [](const Env& e) { return e.localize("", "", e.map_yaml("m.yaml", "origin: [0, 0, 0]\n")); },

@@ -55,15 +55,12 @@ std::vector<Case> message_cases() {
                                "", "", e.map_yaml("r.yaml", map_keys(kIntelOrigin, "1.0e300")));
                          },
                          {"r.yaml:2", "resolution", "1e+300"}));
-  c.push_back(error_case("model_mismatch_1e200", 1,
-                         localize_with("--set likelihood.beam.model_mismatch=1e200"),
-                         {"--set likelihood.beam.model_mismatch=1e200", "[0, 10]"}));
-  c.push_back(error_case("sigma_along_1e200", 1,
-                         localize_with("--set likelihood.beam.sigma_along=1e200"),
-                         {"likelihood.beam.sigma_along", "(0, 10]"}));
-  c.push_back(error_case("reach_sigmas_1e9", 1,
-                         localize_with("--set likelihood.table.reach_sigmas=1e9"),
-                         {"likelihood.table.reach_sigmas"}));
+  c.push_back(bad_setting("model_mismatch_1e200", "likelihood.beam.model_mismatch=1e200",
+                          {"--set likelihood.beam.model_mismatch=1e200", "[0, 10]"}));
+  c.push_back(bad_setting("sigma_along_1e200", "likelihood.beam.sigma_along=1e200",
+                          {"likelihood.beam.sigma_along", "(0, 10]"}));
+  c.push_back(bad_setting("reach_sigmas_1e9", "likelihood.table.reach_sigmas=1e9",
+                          {"likelihood.table.reach_sigmas"}));
   c.push_back(error_case(
       "kernel_reach_names_model_mismatch", 2,
       localize_with(

@@ -6,6 +6,9 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <functional>
+#include <string>
+#include <utility>
 
 #include "hostile_corpus.hpp"
 #include "hostile_util.hpp"
@@ -21,6 +24,25 @@ std::string copy(const Env& e, const std::string& from, const std::string& name)
   fs::create_directories(fs::path(e.path(name)).parent_path());
   fs::copy_file(from, e.path(name), fs::copy_options::overwrite_existing);
   return e.path(name);
+}
+
+/// Copies the base file `file` to `name`, then runs `args` (which name the copy).
+MakeArgs after_copy(const std::string Base::*file, std::string name, std::string args) {
+  return [file, name = std::move(name), args = std::move(args)](const Env& e) {
+    copy(e, e.b.*file, name);
+    return args;
+  };
+}
+
+/// eval of est.tum against truth.tum, both copies of the base truth, with `--out out`; `setup`
+/// then makes whatever `out` names (a link, a folder).
+MakeArgs eval_truth_copies(std::string out, std::function<void(const Env&)> setup = nullptr) {
+  return [out = std::move(out), setup = std::move(setup)](const Env& e) {
+    copy(e, e.b.truth, "truth.tum");
+    copy(e, e.b.truth, "est.tum");
+    if (setup) setup(e);
+    return "eval --estimate est.tum --truth truth.tum --out " + out;
+  };
 }
 
 /// A complete earlier run (with ground truth) in out/, for the re-run cases.
@@ -39,13 +61,7 @@ std::string perturb_args(const Env& e, const std::string& outs) {
 std::vector<Case> output_cases() {
   std::vector<Case> c;
   // An output that is an input, by name, by another spelling, or by link.
-  c.push_back(error_case("eval_out_is_truth", 2,
-                         [](const Env& e) {
-                           copy(e, e.b.truth, "truth.tum");
-                           copy(e, e.b.truth, "est.tum");
-                           return std::string(
-                               "eval --estimate est.tum --truth truth.tum --out truth.tum");
-                         },
+  c.push_back(error_case("eval_out_is_truth", 2, eval_truth_copies("truth.tum"),
                          {"--out", "is also the input --truth"}));
   c.push_back(error_case("eval_out_is_estimate", 2,
                          [](const Env& e) {
@@ -53,47 +69,31 @@ std::vector<Case> output_cases() {
                            return "eval --estimate est.tum --truth " + e.b.truth + " --out est.tum";
                          },
                          {"is also the input --estimate"}));
+  c.push_back(
+      error_case("eval_out_is_truth_other_spelling", 2,
+                 eval_truth_copies("./sub/../truth.tum",
+                                   [](const Env& e) { fs::create_directories(e.path("sub")); }),
+                 {"is also the input --truth"}));
   c.push_back(error_case(
-      "eval_out_is_truth_other_spelling", 2,
-      [](const Env& e) {
-        copy(e, e.b.truth, "truth.tum");
-        copy(e, e.b.truth, "est.tum");
-        fs::create_directories(e.path("sub"));
-        return std::string("eval --estimate est.tum --truth truth.tum --out ./sub/../truth.tum");
-      },
+      "eval_out_symlink_to_truth", 2,
+      eval_truth_copies("link.yaml",
+                        [](const Env& e) { fs::create_symlink("truth.tum", e.path("link.yaml")); }),
       {"is also the input --truth"}));
-  c.push_back(error_case("eval_out_symlink_to_truth", 2,
-                         [](const Env& e) {
-                           copy(e, e.b.truth, "truth.tum");
-                           copy(e, e.b.truth, "est.tum");
-                           fs::create_symlink("truth.tum", e.path("link.yaml"));
-                           return std::string(
-                               "eval --estimate est.tum --truth truth.tum --out link.yaml");
-                         },
-                         {"is also the input --truth"}));
   c.push_back(error_case("eval_out_hardlink_to_truth", 2,
-                         [](const Env& e) {
-                           copy(e, e.b.truth, "truth.tum");
-                           copy(e, e.b.truth, "est.tum");
-                           fs::create_hard_link(e.path("truth.tum"), e.path("hard.yaml"));
-                           return std::string(
-                               "eval --estimate est.tum --truth truth.tum --out hard.yaml");
-                         },
+                         eval_truth_copies("hard.yaml",
+                                           [](const Env& e) {
+                                             fs::create_hard_link(e.path("truth.tum"),
+                                                                  e.path("hard.yaml"));
+                                           }),
                          {"is also the input --truth"}));
   c.push_back(error_case("map_out_is_log", 2,
-                         [](const Env& e) {
-                           copy(e, e.b.log, "l.log");
-                           return std::string("map --log l.log --out l.log");
-                         },
+                         after_copy(&Base::log, "l.log", "map --log l.log --out l.log"),
                          {"--out", "is also the input --log"}));
   c.push_back(error_case("map_out_named_like_its_image", 2, map_base_log("--out m/map.pgm"),
                          {"would be one file", ".yaml"}));
-  c.push_back(error_case("map_image_not_an_image_name", 2,
-                         [](const Env& e) {
-                           copy(e, e.b.log, "l.log");
-                           return std::string("map --log l.log --out m.yaml --image l.log");
-                         },
-                         {"--image"}));
+  c.push_back(error_case(
+      "map_image_not_an_image_name", 2,
+      after_copy(&Base::log, "l.log", "map --log l.log --out m.yaml --image l.log"), {"--image"}));
   c.push_back(
       error_case("perturb_out_equals_truth_out", 2,
                  [](const Env& e) { return perturb_args(e, "--out x.log --truth-out x.log"); },
@@ -101,22 +101,18 @@ std::vector<Case> output_cases() {
   c.push_back(error_case("perturb_out_equals_deprecated_truth", 2,
                          [](const Env& e) { return perturb_args(e, "--out x.log --truth x.log"); },
                          {"--truth", "is also the output --out"}));
-  c.push_back(error_case("perturb_out_is_log", 2,
-                         [](const Env& e) {
-                           copy(e, e.b.log, "l.log");
-                           return std::string(
-                               "perturb --log l.log --odom-noise 0.01,0,0.01,0 --seed 1 "
-                               "--out l.log --truth-out t.tum");
-                         },
-                         {"is also the input --log"}));
-  c.push_back(error_case("perturb_truth_out_is_log", 2,
-                         [](const Env& e) {
-                           copy(e, e.b.log, "l.log");
-                           return std::string(
-                               "perturb --log l.log --odom-noise 0.01,0,0.01,0 --seed 1 "
-                               "--out o.log --truth-out l.log");
-                         },
-                         {"--truth-out", "is also the input --log"}));
+  c.push_back(error_case(
+      "perturb_out_is_log", 2,
+      after_copy(
+          &Base::log, "l.log",
+          "perturb --log l.log --odom-noise 0.01,0,0.01,0 --seed 1 --out l.log --truth-out t.tum"),
+      {"is also the input --log"}));
+  c.push_back(error_case(
+      "perturb_truth_out_is_log", 2,
+      after_copy(
+          &Base::log, "l.log",
+          "perturb --log l.log --odom-noise 0.01,0,0.01,0 --seed 1 --out o.log --truth-out l.log"),
+      {"--truth-out", "is also the input --log"}));
   c.push_back(error_case("localize_truth_is_an_output", 2,
                          [](const Env& e) {
                            copy(e, e.b.truth, "out/trajectory.tum");

@@ -188,8 +188,7 @@ std::vector<Case> silent_cases() {
   c.push_back(error_case("perturb_map_seed_too_big", 2,
                          perturb_base_map("--out p.yaml --erase 0.1,1 --seed 99999999999999999999"),
                          {"--seed"}));
-  c.push_back(error_case("set_seed_minus_one", 1, localize_with("--set seed=-1"),
-                         {"--set seed=-1", "seed"}));
+  c.push_back(bad_setting("set_seed_minus_one", "seed=-1", {"--set seed=-1", "seed"}));
   // perturb values that wrote absurd logs.
   for (const auto& [name, args, opt] :
        {std::tuple{"perturb_noise_1e300", "--odom-noise 1e300,0,0,0", "--odom-noise"},

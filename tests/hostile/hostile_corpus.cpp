@@ -216,6 +216,12 @@ Case accepted_case(std::string name, MakeArgs make, CheckRun check) {
   return {std::move(name), Expect::kAccepted, 0, std::move(make), {}, std::move(check)};
 }
 
+Case bad_setting(std::string name, const std::string& assignment,
+                 std::vector<std::string> stderr_has) {
+  return error_case(std::move(name), 1, localize_with("--set " + assignment),
+                    std::move(stderr_has));
+}
+
 MakeArgs localize_with(std::string extra, std::string log, std::string map) {
   return [extra = std::move(extra), log = std::move(log), map = std::move(map)](const Env& e) {
     return e.localize(extra, log, map);

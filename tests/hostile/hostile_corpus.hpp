@@ -95,6 +95,9 @@ struct Case {
 [[nodiscard]] Case warning_case(std::string name, MakeArgs make,
                                 std::vector<std::string> stderr_has, CheckRun check = nullptr);
 [[nodiscard]] Case accepted_case(std::string name, MakeArgs make, CheckRun check = nullptr);
+/// localize with `--set <assignment>`, a filter setting it must refuse (exit 1).
+[[nodiscard]] Case bad_setting(std::string name, const std::string& assignment,
+                               std::vector<std::string> stderr_has);
 
 /// The arguments of Env::localize(extra, log, map), for a case that only runs localize.
 [[nodiscard]] MakeArgs localize_with(std::string extra, std::string log = "", std::string map = "");

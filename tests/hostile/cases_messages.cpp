@@ -126,6 +126,13 @@ std::vector<Case> message_cases() {
   c.push_back(error_case("map_command_resolution_1e300", 2,
                          map_base_log("--resolution 1e300 --out m.yaml"),
                          {"--resolution", "1000"}));
+  // Under the 1000 m cap but coarser than localize accepts: refused before anything is written.
+  c.push_back(
+      error_case("map_command_resolution_10_m", 2, map_base_log("--resolution 10 --out m.yaml"),
+                 {"--resolution 10 m", "x", "cells, too coarse for localize", "at most 7.5 m"}));
+  c.push_back(error_case("map_command_resolution_999_m", 2,
+                         map_base_log("--resolution 999 --out m.yaml"),
+                         {"--resolution 999 m", "cells, too coarse for localize"}));
   c.push_back(error_case(
       "map_command_every_beam_no_return", 1,
       [](const Env& e) {

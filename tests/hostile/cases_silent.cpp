@@ -11,8 +11,13 @@
 namespace pgmcl::hostile {
 namespace {
 
-/// Adds `d` metres in x to every ODOM and FLASER odometry pose from the `k`-th scan on.
-std::vector<std::string> jump_after(const std::vector<std::string>& lines, int k, double d) {
+/// Which pose field jump_after shifts: its offset from x in a CARMEN pose (x y theta).
+enum class PoseField : std::size_t { kX = 0, kTheta = 2 };
+
+/// Adds `d` (metres in x, or radians to theta) to every ODOM and FLASER odometry pose from
+/// the `k`-th scan on.
+std::vector<std::string> jump_after(const std::vector<std::string>& lines, int k, double d,
+                                    PoseField field = PoseField::kX) {
   std::vector<std::string> out;
   int scans = 0;
   bool after = false;
@@ -24,7 +29,10 @@ std::vector<std::string> jump_after(const std::vector<std::string>& lines, int k
     }
     std::vector<std::string> w = words(l);
     // ODOM x at 1; FLASER laser x and odom x at n + 2 and n + 5.
-    const auto shift = [&](std::size_t i) { w[i] = number(std::stod(w[i]) + d); };
+    const auto shift = [&](std::size_t i) {
+      i += static_cast<std::size_t>(field);
+      w[i] = number(std::stod(w[i]) + d);
+    };
     if (w[0] == "ODOM") {
       shift(1);
     } else {
@@ -91,6 +99,27 @@ std::vector<Case> silent_cases() {
                              },
                              {"odometry jump", "faster than 10 m/s"}));
   }
+  // Heading jumps no robot turns: interpolation wraps them to an ordinary-looking angle.
+  for (const auto& [name, d] : {std::pair{"odometry_heading_jump_1e6_rad", 1e6},
+                                std::pair{"odometry_heading_jump_minus_100_rad", -100.0}}) {
+    const double jump = d;
+    c.push_back(warning_case(
+        name,
+        [jump](const Env& e) {
+          return e.localize(
+              "", e.write("j.log", join(jump_after(e.log_lines(), 60, jump, PoseField::kTheta))));
+        },
+        {"1 odometry heading jump(s)", "faster than 10 rad/s"}));
+  }
+  c.push_back(warning_case("odometry_heading_jump_scan_fields_only",
+                           [](const Env& e) {
+                             std::vector<std::string> l;
+                             for (const std::string& s :
+                                  jump_after(e.log_lines(), 60, 1e6, PoseField::kTheta))
+                               if (s.rfind("ODOM", 0) != 0) l.push_back(s);
+                             return e.localize("", e.write("j.log", join(l)));
+                           },
+                           {"1 odometry heading jump(s)"}));
   c.push_back(warning_case("odometry_jump_scan_fields_only",
                            [](const Env& e) {
                              std::vector<std::string> l;

@@ -48,6 +48,7 @@ struct RunConfig {
   bool kld = false;
   bool subsample = true;  // kMaxBeams(beams) vs every valid beam
   bool recovery = true;   // augmented-MCL random injection (not a skip switch; --recovery)
+  bool hypotheses = true;  // competing hypotheses (--hypotheses)
   std::uint64_t seed = 1;
 };
 
@@ -64,6 +65,7 @@ pgmcl::LocalizerConfig make_config(const RunConfig& c, int threads,
   pgmcl::LocalizerConfig cfg;
   cfg.motion.noise = motion;
   cfg.filter.recovery.enabled = c.recovery;
+  cfg.hypotheses.enabled = c.hypotheses;
   cfg.filter.particles = c.particles;
   cfg.filter.global_particles = c.particles;
   cfg.filter.kld.enabled = c.kld;
@@ -153,6 +155,7 @@ int main(int argc, char** argv) {
   std::size_t switch_seeds = 3, switch_particles = 2000, switch_beams = 60;
   int threads = 1;
   bool recovery = pgmcl::RecoveryConfig{}.enabled;
+  bool hypotheses = pgmcl::HypothesesConfig{}.enabled;
   std::string motion_s;
   app.add_option("--name", name, "Dataset label in the CSV")->required();
   log_options.add_to(app, /*required=*/false);
@@ -176,6 +179,8 @@ int main(int argc, char** argv) {
                  "Filter's motion model A1,A2,A3,A4 (Table 5.6 variance form; default: library's)");
   app.add_option("--recovery", recovery,
                  "Augmented-MCL random injection (filter.recovery.enabled; default: library's)");
+  app.add_option("--hypotheses", hypotheses,
+                 "Competing hypotheses (hypotheses.enabled; default: library's)");
   app.add_option("--csv", csv_path, "Append rows here");
   CLI11_PARSE(app, argc, argv);
   pgmcl::MotionNoise motion = pgmcl::LocalizerConfig{}.motion.noise;
@@ -265,6 +270,7 @@ int main(int argc, char** argv) {
         c.particles = n;
         c.beams = b;
         c.recovery = recovery;
+        c.hypotheses = hypotheses;
         run(c);
       }
 
@@ -291,6 +297,7 @@ int main(int argc, char** argv) {
         c.beams = switch_beams;
         c.kld = true;
         c.recovery = recovery;
+        c.hypotheses = hypotheses;
         c.seed = s;
         v.off(c);
         run(c);

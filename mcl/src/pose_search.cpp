@@ -182,6 +182,8 @@ void PoseSearch::prepare_angles(const PoseSearchQuery& q, int leaf) {
       angles_.push_back(
           wrap_angle(-std::numbers::pi + kTwoPi * (static_cast<double>(i) + 0.5) / n));
   }
+  // Node corners are whole cells, so floor((col + x) / 2^k) = (col + floor(x)) >> k: the
+  // rotated endpoints are floored once here and bound() needs only integer steps.
   const std::size_t m = bx_.size();
   rx_.resize(angles_.size() * m);
   ry_.resize(angles_.size() * m);
@@ -189,8 +191,8 @@ void PoseSearch::prepare_angles(const PoseSearchQuery& q, int leaf) {
     const float c = static_cast<float>(std::cos(angles_[a]));
     const float s = static_cast<float>(std::sin(angles_[a]));
     for (std::size_t j = 0; j < m; ++j) {
-      rx_[a * m + j] = c * bx_[j] - s * by_[j];
-      ry_[a * m + j] = s * bx_[j] + c * by_[j];
+      rx_[a * m + j] = maps::floor_to_cell(c * bx_[j] - s * by_[j]);
+      ry_[a * m + j] = maps::floor_to_cell(s * bx_[j] + c * by_[j]);
     }
   }
 }
@@ -198,14 +200,13 @@ void PoseSearch::prepare_angles(const PoseSearchQuery& q, int leaf) {
 std::uint32_t PoseSearch::bound(const Level& lv, std::int32_t col, std::int32_t row,
                                 std::size_t angle) const noexcept {
   const std::size_t m = bx_.size();
-  const float* rx = rx_.data() + angle * m;
-  const float* ry = ry_.data() + angle * m;
-  const float inv = 1.0f / static_cast<float>(1 << lv.shift);
-  const auto fc = static_cast<float>(col), fr = static_cast<float>(row);
+  const std::int32_t* rx = rx_.data() + angle * m;
+  const std::int32_t* ry = ry_.data() + angle * m;
+  const int shift = lv.shift;
   std::uint32_t sum = 0;
   for (std::size_t j = 0; j < m; ++j) {
-    const int c = maps::floor_to_cell((fc + rx[j]) * inv) + 1;
-    const int r = maps::floor_to_cell((fr + ry[j]) * inv) + 1;
+    const int c = ((col + rx[j]) >> shift) + 1;  // arithmetic shift: floor division
+    const int r = ((row + ry[j]) >> shift) + 1;
     const bool inside = static_cast<unsigned>(c) < static_cast<unsigned>(lv.width) &&
                         static_cast<unsigned>(r) < static_cast<unsigned>(lv.height);
     sum += inside ? lv.cost[static_cast<std::size_t>(r) * static_cast<std::size_t>(lv.width) +

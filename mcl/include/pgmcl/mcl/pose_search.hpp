@@ -131,7 +131,7 @@ class PoseSearch {
   double angle_step_ = 0.0;
   // Per query: headings and rotated endpoints (angle-major).
   std::vector<double> angles_;
-  std::vector<float> rx_, ry_;
+  std::vector<std::int32_t> rx_, ry_;  // floored rotated endpoints, cells, per angle
   std::vector<Node> stack_;
 };
 

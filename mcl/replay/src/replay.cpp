@@ -93,19 +93,28 @@ struct StepTally {
   }
 };
 
-/// Counts steps between consecutive odometry records that no robot drives or turns.
+/// How far one odometry pose is from the next: metres driven, or radians turned (headings
+/// as given, so an unwrapped glitch keeps its size).
+double distance_between(const Pose2& a, const Pose2& b) {
+  return std::hypot(b.x - a.x, b.y - a.y);
+}
+double turn_between(const Pose2& a, const Pose2& b) {
+  return std::abs(b.theta - a.theta);
+}
+
+/// Counts steps between consecutive odometry records that no robot makes: `step` of them
+/// beyond `max_rate` per second.
 struct JumpCounter {
-  StepTally moves, turns;
-  std::optional<io::StampedPose> last;
+  double (*step)(const Pose2&, const Pose2&);
+  double max_rate;
+  StepTally tally{};
+  std::optional<io::StampedPose> last{};
 
   void add(const Pose2& odom, double stamp, std::size_t line) {
     if (last) {
-      const double d = std::hypot(odom.x - last->pose.x, odom.y - last->pose.y);
-      const double turn = std::abs(odom.theta - last->pose.theta);
+      const double d = step(last->pose, odom);
       const double dt = stamp - last->stamp;
-      const double timed = std::max(dt, kMinJumpTime);
-      if (d > kMaxSpeed * timed) moves.add(d, dt, line);
-      if (turn > kMaxTurnRate * timed) turns.add(turn, dt, line);
+      if (d > max_rate * std::max(dt, kMinJumpTime)) tally.add(d, dt, line);
     }
     last = io::StampedPose{stamp, odom};
   }
@@ -115,7 +124,7 @@ struct JumpCounter {
 /// own odometry fields, each stream on its own and with headings as logged: wrapped, a
 /// heading glitch of 1e6 rad looks like any turn.
 StepTally heading_jumps(const io::CarmenLog& log, const io::PairedScans& paired) {
-  JumpCounter odom, fields;
+  JumpCounter odom{&turn_between, kMaxTurnRate}, fields{&turn_between, kMaxTurnRate};
   for (const io::OdomRecord& r : log.odometry) {
     odom.add({r.pose.x, r.pose.y, r.logged_theta}, r.stamp, r.line);
   }
@@ -125,8 +134,8 @@ StepTally heading_jumps(const io::CarmenLog& log, const io::PairedScans& paired)
       fields.add({s.odom_pose.x, s.odom_pose.y, s.logged_odom_theta}, s.stamp, s.line);
     }
   }
-  odom.turns.merge(fields.turns);
-  return odom.turns;
+  odom.tally.merge(fields.tally);
+  return odom.tally;
 }
 
 std::string g(double v) {
@@ -216,7 +225,7 @@ ReplayResult run(const ReplayJob& job, const ReplayHooks& hooks) {
   out.rows.reserve(usable);
   out.trajectory.reserve(usable);
   std::size_t done = 0, out_of_order = 0, unpaired = 0;
-  JumpCounter jumps;
+  JumpCounter jumps{&distance_between, kMaxSpeed};
   double last_stamp = -std::numeric_limits<double>::infinity();
   for (const io::PairedScan& p : paired.scans) {
     if (hooks.stop != nullptr && hooks.stop->load(std::memory_order_relaxed)) {
@@ -271,7 +280,7 @@ ReplayResult run(const ReplayJob& job, const ReplayHooks& hooks) {
         std::to_string(paired.report.first_repeated_odom_line) +
         "): rounded stamps? Scans between them get the later one's odometry");
   }
-  if (const StepTally& m = jumps.moves; m.count > 0) {
+  if (const StepTally& m = jumps.tally; m.count > 0) {
     out.warnings.push_back(
         job.log_name + ": " + std::to_string(m.count) + " odometry jump(s) faster than " +
         g(kMaxSpeed) + " m/s between consecutive scans (largest " + g(m.largest) + " m in " +

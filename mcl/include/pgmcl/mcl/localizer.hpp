@@ -106,6 +106,7 @@ class Localizer {
   void resample(UpdateResult& r);
   [[nodiscard]] std::size_t kld_sample_count(Rng& rng, double p_inject, Rng& inject_rng);
   void compute_estimate(UpdateResult& r);
+  [[nodiscard]] Pose2 within_best_cluster(const Pose2& tempered_mean);
   void count_background(UpdateResult& r) const noexcept;
   void reset_after_init();
   [[nodiscard]] std::uint64_t next_step() noexcept { return step_++; }
@@ -131,6 +132,7 @@ class Localizer {
     std::vector<std::uint8_t> next_probation;
     std::vector<double> log_w_probation, log_w_tracked;  // limit_probation_weight()
     std::vector<std::uint32_t> seed_victims;             // seed_particles()
+    std::vector<double> estimate_w;                      // compute_estimate(): untempered
   };
 
   ParticleSet p_;
@@ -145,6 +147,7 @@ class Localizer {
   bool clustered_ = false;  // the last estimate met EstimateConfig's cluster criterion
   bool one_mode_ = false;  // the last estimate: one cluster with nearly all the weight, <= 1 m wide
   int unimodal_ = 0;       // consecutive updates with one_mode_
+  double withheld_tau_ = 0.0;  // the last scan's exponent the tempering limit held back
 
   // Filter state.
   bool have_odom_ = false;

@@ -29,7 +29,9 @@ struct UpdateTimings {
 };
 
 struct UpdateResult {
-  /// Best hypothesis in the global frame: the weighted mean of the heaviest cluster.
+  /// Best hypothesis in the global frame: the weighted mean of the heaviest cluster. While
+  /// the set still holds several places (the tempering limit, LikelihoodConfig::min_ess_ratio,
+  /// keeps them), the particles near that cluster's mean are weighed by the whole scan.
   /// On skipped updates, the last estimate moved by the odometry since (dead reckoning).
   Pose2 estimate{};
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< of `estimate`; x, y, theta; global

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "closed_loop.hpp"
@@ -95,6 +96,40 @@ TEST(Kidnapping, RecoversAfterBeingCarriedAway) {
   EXPECT_LT(recovered_at, 90u) << "still lost at update " << recovered_at;
   EXPECT_LT(after.final_xy, 0.1);
   EXPECT_LT(after.final_theta, 3 * kDeg);
+}
+
+
+// Global localisation with sparse scans (0.5 m / 15 deg apart): while the set still holds
+// several places, the reported pose is the best one of its own place, not the middle of a
+// cloud the tempering limit keeps broad.
+TEST(GlobalLocalisation, EstimateBeforeConvergenceIsTheBestOfItsPlace) {
+  const test::World world = test::make_room(0.05);
+  const auto truth = test::loop_trajectory(0.5, 15 * kDeg);
+  double sum = 0.0;
+  std::size_t near = 0;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    const auto odom = test::noisy_odometry(truth, MotionNoise{}, seed);
+    test::ScanSpec spec;
+    spec.noise_sigma = 0.01;
+    LocalizerConfig cfg = global_config();
+    cfg.seed = seed;
+    Localizer loc(world.grid, cfg);
+    Rng noise(seed + 3);
+    for (std::size_t k = 0; k < truth.size(); ++k) {
+      const UpdateResult r = loc.update(odom[k], world.scan(truth[k], spec, &noise), 2.0 * k);
+      const double e = test::xy_error(r.estimate, truth[k]);
+      if (!r.converged && e < 1.0) {
+        sum += e;
+        ++near;
+      }
+    }
+  }
+  std::printf("  %zu unconverged updates within 1 m, mean error %.3f m\n", near,
+              near ? sum / near : 0.0);
+  // Seen: 12 such updates, 0.022 m; reporting the cluster's mean under the tempered
+  // weights instead: 0.318 m.
+  ASSERT_GE(near, 6u) << "the scenario no longer has unconverged updates near the truth";
+  EXPECT_LT(sum / near, 0.1);
 }
 
 }  // namespace

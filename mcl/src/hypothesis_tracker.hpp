@@ -156,6 +156,7 @@ class HypothesisTracker {
   double global_root_cost_ = 0.0;     // lookups per root block of the last global search
 
   std::vector<Competitor> competitors_;
+  std::vector<Scored> refined_;  // rescue(): its refined candidates, best first
   bool have_fit_mean_ = false;
   double fit_mean_ = 0.0;      // the prediction's fit, over ~10 tracking updates
   double fit_var_ = 0.0;       // its running variance, over ~10

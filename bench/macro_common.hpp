@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <optional>
 #include <string>
 #include <vector>
@@ -93,6 +94,16 @@ struct TimeSummary {
 [[nodiscard]] inline std::FILE* open_csv_for_append(const std::string& path, const char* header,
                                                     const char* program) {
   const bool fresh = !std::filesystem::exists(path) || std::filesystem::file_size(path) == 0;
+  if (!fresh) {  // rows under another program version's columns would be misread
+    std::ifstream in(path);
+    std::string first;
+    std::getline(in, first);
+    if (first != header) {
+      std::fprintf(stderr, "%s: %s has other columns than this version writes; use a new file\n",
+                   program, path.c_str());
+      return nullptr;
+    }
+  }
   std::FILE* f = std::fopen(path.c_str(), "a");
   if (!f) {
     std::fprintf(stderr, "%s: cannot write %s\n", program, path.c_str());

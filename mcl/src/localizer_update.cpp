@@ -174,6 +174,7 @@ bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, Up
   const Pose2 prediction = origin_.between(anchor_).compose(delta);  // map-local
   if (hypotheses_) {
     // Competing hypotheses may redraw some particles before the scan scores them all.
+    const auto th = Clock::now();
     const detail::HypothesisStep h =
         hypotheses_->update(scan, ws_.selected_beams, model_.beams(), prediction, delta, p_.size());
     seed_particles(h.seed);
@@ -182,6 +183,7 @@ bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, Up
     r.searched = h.searched;
     r.competitors = h.competitors;
     r.alternative_evidence = h.alternative_evidence;
+    r.timings.hypotheses_ms = ms_since(th);
   }
   const std::size_t n = p_.size();
   ws_.beam_sums.resize(n);

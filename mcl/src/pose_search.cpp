@@ -9,6 +9,8 @@ namespace pgmcl {
 namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
+// bound() compares its partial sum with the limit every this many beams (a power of two).
+constexpr std::size_t kBoundCheck = 8;
 
 // Minimum over the fine cells [C * s, C * s + 2 s) of one axis, for C in [-1, ceil(n / s)),
 // stored at C + 1; empty windows read `background`.
@@ -140,16 +142,27 @@ std::size_t PoseSearch::bytes() const noexcept {
 }
 
 bool PoseSearch::set_scan(const PreparedBeams& beams) {
+  full_circle_leaf_ = -1;
   const std::size_t m = beams.size();
   const std::size_t k = std::min(m, cfg_.max_beams);
   bx_.resize(k);
   by_.resize(k);
   std::vector<float> ranges(k);
-  for (std::size_t j = 0; j < k; ++j) {
-    const std::size_t i = (j * m) / k;  // evenly spread over the selection
+  // Beams evenly spread over the selection, in bit-reversed order: every prefix spans the
+  // scan, so bound() finds a node past its limit after a few of them.
+  int bits = 0;
+  while ((std::size_t{1} << bits) < k) ++bits;
+  std::size_t j = 0;
+  for (std::size_t r = 0; r < (std::size_t{1} << bits); ++r) {
+    std::size_t v = 0;
+    for (int b = 0; b < bits; ++b)
+      if ((r >> b) & 1u) v |= std::size_t{1} << (bits - 1 - b);
+    if (v >= k) continue;
+    const std::size_t i = (v * m) / k;
     bx_[j] = beams.ex[i];
     by_[j] = beams.ey[i];
     ranges[j] = std::hypot(bx_[j], by_[j]);
+    ++j;
   }
   if (k == 0) return false;
   // An endpoint at range r moves r * step between neighbouring headings: keep that within
@@ -169,6 +182,9 @@ std::uint64_t PoseSearch::root_cost() const noexcept {
 }
 
 void PoseSearch::prepare_angles(const PoseSearchQuery& q, int leaf) {
+  // A sweep searches the map a slice per query, all at the same headings: rotate once a scan.
+  if (!q.windowed && full_circle_leaf_ == leaf) return;
+  full_circle_leaf_ = q.windowed ? -1 : leaf;
   angles_.clear();
   const double step =
       std::min(angle_step_ * static_cast<double>(1 << leaf), 4.0 * cfg_.max_angle_step);
@@ -198,13 +214,15 @@ void PoseSearch::prepare_angles(const PoseSearchQuery& q, int leaf) {
 }
 
 std::uint32_t PoseSearch::bound(const Level& lv, std::int32_t col, std::int32_t row,
-                                std::size_t angle) const noexcept {
+                                std::size_t angle, std::uint64_t limit) const noexcept {
   const std::size_t m = bx_.size();
   const std::int32_t* rx = rx_.data() + angle * m;
   const std::int32_t* ry = ry_.data() + angle * m;
   const int shift = lv.shift;
   std::uint32_t sum = 0;
   for (std::size_t j = 0; j < m; ++j) {
+    // Costs are not negative: a partial sum at the limit prunes the node already.
+    if ((j & (kBoundCheck - 1)) == 0 && sum >= limit) return sum;
     const int c = ((col + rx[j]) >> shift) + 1;  // arithmetic shift: floor division
     const int r = ((row + ry[j]) >> shift) + 1;
     const bool inside = static_cast<unsigned>(c) < static_cast<unsigned>(lv.width) &&
@@ -284,11 +302,17 @@ PoseSearchResult PoseSearch::search(const PoseSearchQuery& q) {
   // Roots: every (root block, heading) with free space, best bound first.
   stack_.clear();
   std::vector<Node> roots;
+  // Nodes at or above the threshold are pruned when popped, and the threshold only falls:
+  // such nodes are not kept at all. Lookups are counted as if every bound ran to the end,
+  // so budgets and the sweep's pace do not depend on how early a bound stops.
+  const std::uint64_t cap = static_cast<std::uint64_t>(q.max_cost) + 1;  // prune at >= cap
   auto add_root = [&](std::int32_t col, std::int32_t row) {
     for (std::size_t a = 0; a < angles_.size(); ++a) {
-      roots.push_back({col, row, bound(root, col, row, a), static_cast<std::uint16_t>(a),
-                       static_cast<std::uint8_t>(levels_.size() - 1)});
+      const std::uint32_t cost = bound(root, col, row, a, cap);
       res.lookups += per_node;
+      if (cost < cap)
+        roots.push_back({col, row, cost, static_cast<std::uint16_t>(a),
+                         static_cast<std::uint8_t>(levels_.size() - 1)});
     }
   };
   if (q.windowed) {
@@ -313,7 +337,6 @@ PoseSearchResult PoseSearch::search(const PoseSearchQuery& q) {
   stack_ = std::move(roots);
 
   auto threshold = [&]() -> std::uint64_t {
-    const std::uint64_t cap = static_cast<std::uint64_t>(q.max_cost) + 1;  // prune at >= cap
     if (res.candidates.size() < q.max_candidates) return cap;
     return std::min<std::uint64_t>(cap, res.candidates.back().cost);
   };
@@ -335,14 +358,16 @@ PoseSearchResult PoseSearch::search(const PoseSearchQuery& q) {
     }
     const Level& lv = levels_[n.level - 1u];
     const int s = 1 << lv.shift;
+    const std::uint64_t limit = threshold();
     int k = 0;
     for (int dr = 0; dr < 2; ++dr)
       for (int dc = 0; dc < 2; ++dc) {
         const std::int32_t col = n.col + dc * s, row = n.row + dr * s;
         if (!has_free(lv, col, row) || !overlaps(col, row, s)) continue;
-        children[k++] = {col, row, bound(lv, col, row, n.angle), n.angle,
-                         static_cast<std::uint8_t>(n.level - 1u)};
+        const std::uint32_t cost = bound(lv, col, row, n.angle, limit);
         res.lookups += per_node;
+        if (cost < limit)
+          children[k++] = {col, row, cost, n.angle, static_cast<std::uint8_t>(n.level - 1u)};
       }
     // Worst first, so the best child ends on top of the stack (insertion sort of <= 4).
     for (int i = 1; i < k; ++i)

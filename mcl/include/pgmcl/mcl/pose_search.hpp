@@ -111,8 +111,9 @@ class PoseSearch {
     std::uint8_t level = 0;
   };
 
+  /// The node's pooled cost, or a partial sum of it once that reaches `limit`.
   [[nodiscard]] std::uint32_t bound(const Level& lv, std::int32_t col, std::int32_t row,
-                                    std::size_t angle) const noexcept;
+                                    std::size_t angle, std::uint64_t limit) const noexcept;
   void prepare_angles(const PoseSearchQuery& q, int leaf);
   [[nodiscard]] bool has_free(const Level& lv, std::int32_t col, std::int32_t row) const noexcept;
   void record(const PoseSearchQuery& q, const Node& leaf, std::vector<PoseCandidate>& out) const;
@@ -132,6 +133,7 @@ class PoseSearch {
   // Per query: headings and rotated endpoints (angle-major).
   std::vector<double> angles_;
   std::vector<std::int32_t> rx_, ry_;  // floored rotated endpoints, cells, per angle
+  int full_circle_leaf_ = -1;  // rx_, ry_ hold the whole circle at this leaf level (-1: no)
   std::vector<Node> stack_;
 };
 

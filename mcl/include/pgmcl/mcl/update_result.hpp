@@ -23,6 +23,7 @@ enum class SkipReason : std::uint8_t {
 struct UpdateTimings {
   double motion_ms = 0.0;
   double measurement_ms = 0.0;  ///< beam preparation + scoring + normalisation
+  double hypotheses_ms = 0.0;   ///< of measurement_ms: competing hypotheses (HypothesesConfig)
   double resample_ms = 0.0;     ///< KLD sizing + resampling + random injection
   double estimate_ms = 0.0;     ///< mean, covariance, clustering
   double total_ms = 0.0;

@@ -42,12 +42,12 @@ constexpr double kFadedHeading = 0.17;
 // that still fits, before the filter moves there.
 constexpr double kSettledView = 10.0;
 // The map sweep's budget while the prediction is lost.
-constexpr double kLostSweepBoost = 10.0;
+constexpr double kLostSweepBoost = 4.0;
 // Coarse candidates a rescue search refines, and the best of them it keeps. The coarse
 // bound ranks poorly: on intel a 2 m slip's true pose was fourth of the coarse candidates
 // and first once refined. More coarse ones weaken the search's pruning (its threshold is
 // the worst kept candidate); more kept ones add competitors that may win by chance.
-constexpr std::size_t kRescueCoarse = 10;
+constexpr std::size_t kRescueCoarse = 5;
 constexpr std::size_t kRescueCandidates = 3;
 
 }  // namespace

@@ -195,7 +195,9 @@ TEST(Hypotheses, AWrongPlaceIsNotReportedConvergedForLong) {
         "  hypotheses %s: converged on the wrong place on %zu of 60 updates (longest %zu)\n",
         on ? "on" : "off", wrong_converged, longest);
     if (on) {
-      EXPECT_LE(longest, 3u);
+      // How soon depends on the map sweep's pace (HypothesesConfig::sweep_share): seen 3
+      // updates at a share of 0.25, 4 at 0.15, the default.
+      EXPECT_LE(longest, 5u);
     } else {
       EXPECT_GT(longest, 3u) << "the scenario no longer leaves the filter on a wrong place";
     }

@@ -138,7 +138,7 @@ struct HypothesesConfig {
   std::uint64_t rescue_budget = 2'000'000;  ///< beam lookups per rescue search
   /// Map sweep while tracking, a root block at a time: lookups per update, as a share of
   /// the particles' own (particles x beams). 0 turns the sweep off.
-  double sweep_share = 0.25;
+  double sweep_share = 0.15;
   double separation_xy = 1.0;      ///< metres: closer hypotheses are the same place
   double separation_theta = 0.44;  ///< radians (25 deg)
   /// Judge hypotheses also by the free space their readings cross (a ray through a wall

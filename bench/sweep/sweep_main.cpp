@@ -46,8 +46,8 @@ struct RunConfig {
   bool gating = true;
   bool selective = true;  // selective resampling (N_eff threshold 0.5) vs every update
   bool kld = false;
-  bool subsample = true;  // kMaxBeams(beams) vs every valid beam
-  bool recovery = true;   // augmented-MCL random injection (not a skip switch; --recovery)
+  bool subsample = true;   // kMaxBeams(beams) vs every valid beam
+  bool recovery = true;    // augmented-MCL random injection (not a skip switch; --recovery)
   bool hypotheses = true;  // competing hypotheses (--hypotheses)
   std::uint64_t seed = 1;
 };

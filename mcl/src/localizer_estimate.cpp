@@ -41,7 +41,8 @@ Pose2 Localizer::within_best_cluster(const Pose2& tempered_mean) {
   const std::span<const std::uint32_t> label = clusterer_.labels();
   const auto near = [&](std::size_t i) {
     return label[i] == 0 && std::abs(p_.x[i] - mx) <= reach_xy &&
-           std::abs(p_.y[i] - my) <= reach_xy && std::abs(wrap_angle(p_.theta[i] - mt)) <= reach_theta;
+           std::abs(p_.y[i] - my) <= reach_xy &&
+           std::abs(wrap_angle(p_.theta[i] - mt)) <= reach_theta;
   };
   const auto sharp = [&](std::size_t i) {
     return p_.log_w[i] + (probation_[i] == 0 ? withheld_tau_ * ws_.scan_ll[i] : 0.0);

@@ -98,7 +98,6 @@ TEST(Kidnapping, RecoversAfterBeingCarriedAway) {
   EXPECT_LT(after.final_theta, 3 * kDeg);
 }
 
-
 // Global localisation with sparse scans (0.5 m / 15 deg apart): while the set still holds
 // several places, the reported pose is the best one of its own place, not the middle of a
 // cloud the tempering limit keeps broad.

@@ -133,7 +133,7 @@ class PoseSearch {
   // Per query: headings and rotated endpoints (angle-major).
   std::vector<double> angles_;
   std::vector<std::int32_t> rx_, ry_;  // floored rotated endpoints, cells, per angle
-  int full_circle_leaf_ = -1;  // rx_, ry_ hold the whole circle at this leaf level (-1: no)
+  int full_circle_leaf_ = -1;          // rx_, ry_ hold the whole circle at this leaf level (-1: no)
   std::vector<Node> stack_;
 };
 

@@ -131,8 +131,10 @@ void HypothesisTracker::rescue(const Scored& ref, int widen, bool abrupt, Hypoth
   out.searched = true;
   refined_.clear();
   for (const PoseCandidate& c : search_.search(q).candidates) refined_.push_back(refine(c));
-  std::stable_sort(refined_.begin(), refined_.end(),
-                   [](const Scored& a, const Scored& b) { return a.score.sum_q < b.score.sum_q; });
+  // Best first; a stable insertion sort of a handful (ties keep the coarse order).
+  for (std::size_t i = 1; i < refined_.size(); ++i)
+    for (std::size_t j = i; j > 0 && refined_[j].score.sum_q < refined_[j - 1].score.sum_q; --j)
+      std::swap(refined_[j], refined_[j - 1]);
   if (refined_.size() > kRescueCandidates) refined_.resize(kRescueCandidates);
   for (const Scored& c : refined_) add(c, ref, Competitor::Origin::kRescue, abrupt);
 }
@@ -196,16 +198,18 @@ void HypothesisTracker::prune(const Scored& ref) {
   // competitor, or left free space.
   std::sort(competitors_.begin(), competitors_.end(),
             [](const Competitor& a, const Competitor& b) { return a.evidence > b.evidence; });
-  std::vector<Competitor> kept;
-  for (const Competitor& c : competitors_) {
+  std::size_t kept = 0;  // competitors_[0, kept) are kept, compacted in place
+  for (std::size_t i = 0; i < competitors_.size(); ++i) {
+    const Competitor& c = competitors_[i];
     if (c.evidence < cfg_.drop_evidence || near_prediction(c.pose, ref.pose) ||
         !is_free(c.pose.x, c.pose.y))
       continue;
     bool dup = false;
-    for (const Competitor& k : kept) dup = dup || same_place(k.pose, c.pose, 0.5);
-    if (!dup && kept.size() < cfg_.max_competitors) kept.push_back(c);
+    for (std::size_t k = 0; k < kept; ++k)
+      dup = dup || same_place(competitors_[k].pose, c.pose, 0.5);
+    if (!dup && kept < cfg_.max_competitors) competitors_[kept++] = competitors_[i];
   }
-  competitors_ = std::move(kept);
+  competitors_.resize(kept);
 }
 
 bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, double fit,

@@ -147,7 +147,8 @@ bool PoseSearch::set_scan(const PreparedBeams& beams) {
   const std::size_t k = std::min(m, cfg_.max_beams);
   bx_.resize(k);
   by_.resize(k);
-  std::vector<float> ranges(k);
+  std::vector<float>& ranges = ranges_;
+  ranges.resize(k);
   // Beams evenly spread over the selection, in bit-reversed order: every prefix spans the
   // scan, so bound() finds a node past its limit after a few of them.
   int bits = 0;
@@ -299,9 +300,8 @@ PoseSearchResult PoseSearch::search(const PoseSearchQuery& q) {
     return !q.windowed || (col + side > wx0 && col < wx1 && row + side > wy0 && row < wy1);
   };
 
-  // Roots: every (root block, heading) with free space, best bound first.
+  // Roots: every (root block, heading) with free space, sorted onto the stack best last.
   stack_.clear();
-  std::vector<Node> roots;
   // Nodes at or above the threshold are pruned when popped, and the threshold only falls:
   // such nodes are not kept at all. Lookups are counted as if every bound ran to the end,
   // so budgets and the sweep's pace do not depend on how early a bound stops.
@@ -311,8 +311,8 @@ PoseSearchResult PoseSearch::search(const PoseSearchQuery& q) {
       const std::uint32_t cost = bound(root, col, row, a, cap);
       res.lookups += per_node;
       if (cost < cap)
-        roots.push_back({col, row, cost, static_cast<std::uint16_t>(a),
-                         static_cast<std::uint8_t>(levels_.size() - 1)});
+        stack_.push_back({col, row, cost, static_cast<std::uint16_t>(a),
+                          static_cast<std::uint8_t>(levels_.size() - 1)});
     }
   };
   if (q.windowed) {
@@ -331,10 +331,9 @@ PoseSearchResult PoseSearch::search(const PoseSearchQuery& q) {
       add_root((cell % root.free_width) * rs, (cell / root.free_width) * rs);
     }
   }
-  std::sort(roots.begin(), roots.end(), [](const Node& a, const Node& b) {
+  std::sort(stack_.begin(), stack_.end(), [](const Node& a, const Node& b) {
     return a.cost != b.cost ? a.cost > b.cost : a.angle > b.angle;  // best last (top of stack)
   });
-  stack_ = std::move(roots);
 
   auto threshold = [&]() -> std::uint64_t {
     if (res.candidates.size() < q.max_candidates) return cap;

@@ -129,6 +129,7 @@ class PoseSearch {
   PoseSearchConfig cfg_;
   // Scan: base-frame endpoints in cells.
   std::vector<float> bx_, by_;
+  std::vector<float> ranges_;  // set_scan(): the endpoints' ranges, for the angle step
   double angle_step_ = 0.0;
   // Per query: headings and rotated endpoints (angle-major).
   std::vector<double> angles_;

@@ -26,13 +26,13 @@ constexpr double kOneModeSpread = 4.0;
 
 }  // namespace
 
-Pose2 Localizer::within_best_cluster(const Pose2& tempered_mean) {
+Pose2 Localizer::within_best_cluster(const Pose2& tempered_mean, double withheld_tau) {
   // The tempering limit keeps other places alive for later scans; it is no reason to doubt
   // this scan inside the chosen place. So the place is chosen by the set's weights and the
   // pose near it is weighed by the scan's whole exponent, as tracking would. "Near": within
   // a mode's extent (a cloud spread over a room is one cluster too). Particles on probation
   // keep the capped weight they have (limit_probation_weight()).
-  if (!(withheld_tau_ > 0.0)) return tempered_mean;
+  if (!(withheld_tau > 0.0)) return tempered_mean;
   const EstimateConfig& ec = cfg_.estimate;
   const auto reach_xy = static_cast<float>(kOneModeSpread * ec.converged_xy_std);
   const auto reach_theta = static_cast<float>(kOneModeSpread * ec.converged_theta_std);
@@ -45,7 +45,7 @@ Pose2 Localizer::within_best_cluster(const Pose2& tempered_mean) {
            std::abs(wrap_angle(p_.theta[i] - mt)) <= reach_theta;
   };
   const auto sharp = [&](std::size_t i) {
-    return p_.log_w[i] + (probation_[i] == 0 ? withheld_tau_ * ws_.scan_ll[i] : 0.0);
+    return p_.log_w[i] + (probation_[i] == 0 ? withheld_tau * ws_.scan_ll[i] : 0.0);
   };
   double top = -std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < p_.size(); ++i)
@@ -57,7 +57,7 @@ Pose2 Localizer::within_best_cluster(const Pose2& tempered_mean) {
   return estimate_pose(p_.x, p_.y, p_.theta, ws_.estimate_w, threads_).mean;
 }
 
-void Localizer::compute_estimate(UpdateResult& r) {
+void Localizer::compute_estimate(UpdateResult& r, double withheld_tau) {
   const PoseEstimate all = estimate_pose(p_.x, p_.y, p_.theta, p_.w, threads_);
   r.mean = origin_.compose(all.mean);
   r.mean_covariance = to_global(all.covariance, origin_.theta);
@@ -66,7 +66,7 @@ void Localizer::compute_estimate(UpdateResult& r) {
   // between modes, on no particle).
   const std::vector<Cluster>& clusters = clusterer_.cluster(p_.x, p_.y, p_.theta, p_.w);
   const Cluster& best = clusters.front();
-  const Pose2 local = within_best_cluster(best.mean);
+  const Pose2 local = within_best_cluster(best.mean, withheld_tau);
   r.estimate = origin_.compose(local);
   // The cluster's spread about the reported pose: its covariance plus the shift's outer product.
   const Eigen::Vector3d shift(local.x - best.mean.x, local.y - best.mean.y,

@@ -113,7 +113,11 @@ UpdateResult Localizer::update(const Pose2& odometry_pose, const LaserScan& scan
 
   // ---- Estimate before resampling (resampling only adds noise to it). ----
   const auto te = Clock::now();
-  compute_estimate(r);
+  const LikelihoodConfig& lc = cfg_.likelihood;
+  const double tau_cfg = lc.effective_beams > 0.0
+                             ? std::min(1.0, lc.effective_beams / static_cast<double>(r.beams_used))
+                             : lc.tempering;
+  compute_estimate(r, measured ? tau_cfg - r.tempering : 0.0);
   if (measured) {
     count_background(r);
     if (hypotheses_ && r.converged) hypotheses_->converged(origin_.between(r.estimate));
@@ -163,7 +167,6 @@ void Localizer::motion_update(const Pose2& odom_prev, const Pose2& odom_now) {
 }
 
 bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, UpdateResult& r) {
-  withheld_tau_ = 0.0;
   valid_beam_indices(scan, field_->model().params().max_range, ws_.valid_beams);
   r.beams_invalid = scan.ranges.size() - ws_.valid_beams.size();
   select_beams(ws_.valid_beams, cfg_.likelihood.selection, ws_.selected_beams);
@@ -223,7 +226,6 @@ bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, Up
           ? tau_cfg
           : detail::limit_tempering(p_.log_w, ws_.scan_ll, tau_cfg, lc.min_ess_ratio);
   r.tempering = tau;
-  withheld_tau_ = tau_cfg - tau;
   for (std::size_t i = 0; i < n; ++i) p_.log_w[i] += tau * ws_.scan_ll[i];
   (void)normalise_log_weights(p_.log_w, p_.w);
   limit_probation_weight(prediction);

@@ -13,6 +13,7 @@
 
 #include "closed_loop.hpp"
 #include "pgmcl/mcl/beam_selection.hpp"
+#include "pgmcl/mcl/clustering.hpp"
 #include "synthetic_world.hpp"
 
 namespace pgmcl {
@@ -261,6 +262,35 @@ TEST(Localizer, SharedFieldConstructorAndGlobalLocalize) {
   }
   EXPECT_LT(std::hypot(sum_cos, sum_sin) / 5000.0, 0.05);  // uniform headings: R ~ 0.013
   EXPECT_FALSE(a.last_result().converged);
+}
+
+// Re-initialising right after an update that the tempering limit held back (a wide start):
+// the new set's estimate is its own heaviest cluster's mean at uniform weights, with nothing
+// of the previous scan's likelihoods (which belong to other particles, maybe fewer).
+TEST(Localizer, ReinitialisingAfterATemperedUpdateForgetsTheScan) {
+  Scenario sc;
+  LocalizerConfig cfg;
+  cfg.threads = 1;
+  cfg.filter.global_particles = 5000;
+  Localizer loc(sc.world.grid, cfg);
+  loc.set_pose(sc.truth[0], diag_cov(2.0, 1.0));  // far from compact: the limit holds
+  Rng noise(3);
+  const UpdateResult r = loc.update(sc.odom[0], sc.world.scan(sc.truth[0], sc.spec, &noise), 0.0);
+  ASSERT_LT(r.tempering, 1.0 / 6.0) << "the scenario no longer limits the tempering";
+  for (const bool global : {true, false}) {
+    if (global)
+      loc.global_localize();  // more particles than the scan was scored on
+    else
+      loc.set_pose({3.0, 4.5, 0.0}, diag_cov(0.5, 0.3));
+    const ParticlesView pv = loc.particles();
+    const std::vector<double> uniform(pv.size(), 1.0);
+    const Cluster best = cluster_particles(pv.x, pv.y, pv.theta, uniform).front();
+    const Pose2 expected = pv.origin.compose(best.mean);
+    const Pose2 got = loc.last_result().estimate;
+    EXPECT_NEAR(got.x, expected.x, 1e-9) << (global ? "global_localize" : "set_pose");
+    EXPECT_NEAR(got.y, expected.y, 1e-9);
+    EXPECT_NEAR(wrap_angle(got.theta - expected.theta), 0.0, 1e-9);
+  }
 }
 
 void expect_invalid(const LocalizerConfig& cfg, const std::string& field) {

@@ -105,8 +105,10 @@ class Localizer {
   void limit_probation_weight(const Pose2& prediction);  // map-local
   void resample(UpdateResult& r);
   [[nodiscard]] std::size_t kld_sample_count(Rng& rng, double p_inject, Rng& inject_rng);
-  void compute_estimate(UpdateResult& r);
-  [[nodiscard]] Pose2 within_best_cluster(const Pose2& tempered_mean);
+  /// `withheld_tau`: the part of this update's scan exponent the tempering limit held back
+  /// (0 outside an update).
+  void compute_estimate(UpdateResult& r, double withheld_tau = 0.0);
+  [[nodiscard]] Pose2 within_best_cluster(const Pose2& tempered_mean, double withheld_tau);
   void count_background(UpdateResult& r) const noexcept;
   void reset_after_init();
   [[nodiscard]] std::uint64_t next_step() noexcept { return step_++; }
@@ -147,7 +149,6 @@ class Localizer {
   bool clustered_ = false;  // the last estimate met EstimateConfig's cluster criterion
   bool one_mode_ = false;  // the last estimate: one cluster with nearly all the weight, <= 1 m wide
   int unimodal_ = 0;       // consecutive updates with one_mode_
-  double withheld_tau_ = 0.0;  // the last scan's exponent the tempering limit held back
 
   // Filter state.
   bool have_odom_ = false;

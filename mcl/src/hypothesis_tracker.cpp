@@ -25,8 +25,7 @@ HypothesisTracker::HypothesisTracker(std::shared_ptr<const maps::LikelihoodField
                                      const LikelihoodConfig& likelihood)
     : field_(std::move(field)),
       cfg_(cfg),
-      tau_beams_(likelihood.effective_beams),
-      tempering_(likelihood.tempering),
+      likelihood_(likelihood),
       search_(*field_, free_cells, cfg.search),
       // Rays stop where the endpoint's own uncertainty begins, plus the cells a wall may
       // be drawn thick by.
@@ -113,7 +112,7 @@ void HypothesisTracker::global_step(std::size_t particles, HypothesisStep& out) 
   if (res.candidates.empty()) return;
   // Candidates within candidate_margin (tempered nats) of this slice's best, refined.
   const auto beams = static_cast<double>(search_.beams());
-  const double tau = tau_beams_ > 0.0 ? std::min(1.0, tau_beams_ / beams) : tempering_;
+  const double tau = likelihood_.tempering_for(beams);
   const double margin = cfg_.candidate_margin / (tau * search_.nats_per_step());
   for (const PoseCandidate& c : res.candidates) {
     if (static_cast<double>(c.cost - res.candidates.front().cost) > margin) break;
@@ -188,7 +187,7 @@ double HypothesisTracker::fit_of(const Scored& s) const noexcept {
 double HypothesisTracker::evidence(std::uint32_t q_ref, std::uint32_t q) const noexcept {
   // The filter's own weighting, tau * (ll - ll_ref) (LikelihoodConfig), on the probe beams.
   const auto m = static_cast<double>(probe_.beams().size());
-  const double tau = tau_beams_ > 0.0 ? std::min(1.0, tau_beams_ / m) : tempering_;
+  const double tau = likelihood_.tempering_for(m);
   return tau * field_->model().nats_per_step() *
          (static_cast<double>(q_ref) - static_cast<double>(q));
 }

@@ -138,8 +138,7 @@ class HypothesisTracker {
 
   std::shared_ptr<const maps::LikelihoodField> field_;
   HypothesesConfig cfg_;
-  double tau_beams_ = 20.0;  // LikelihoodConfig::effective_beams (<= 0: fixed tempering_)
-  double tempering_ = 1.0;
+  LikelihoodConfig likelihood_;  // the filter's tempering (LikelihoodConfig::tempering_for)
   PoseSearch search_;
   FreeSpace free_;
   MeasurementModel probe_;  // a few of the scan's beams, for scoring single hypotheses

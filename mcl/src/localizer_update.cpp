@@ -113,11 +113,8 @@ UpdateResult Localizer::update(const Pose2& odometry_pose, const LaserScan& scan
 
   // ---- Estimate before resampling (resampling only adds noise to it). ----
   const auto te = Clock::now();
-  const LikelihoodConfig& lc = cfg_.likelihood;
-  const double tau_cfg = lc.effective_beams > 0.0
-                             ? std::min(1.0, lc.effective_beams / static_cast<double>(r.beams_used))
-                             : lc.tempering;
-  compute_estimate(r, measured ? tau_cfg - r.tempering : 0.0);
+  const double full_tau = cfg_.likelihood.tempering_for(static_cast<double>(r.beams_used));
+  compute_estimate(r, measured ? full_tau - r.tempering : 0.0);
   if (measured) {
     count_background(r);
     if (hypotheses_ && r.converged) hypotheses_->converged(origin_.between(r.estimate));
@@ -219,8 +216,7 @@ bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, Up
   // contraction of a compact but offset, or broad, cluster (sparse scans re-spread it
   // every step). One scan is not enough: a sparse one can single out a wrong place.
   const LikelihoodConfig& lc = cfg_.likelihood;
-  const double tau_cfg =
-      lc.effective_beams > 0.0 ? std::min(1.0, lc.effective_beams / m) : lc.tempering;
+  const double tau_cfg = lc.tempering_for(m);
   const double tau =
       clustered_ || unimodal_ >= kUnimodalUpdates
           ? tau_cfg

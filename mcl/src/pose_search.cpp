@@ -147,8 +147,7 @@ bool PoseSearch::set_scan(const PreparedBeams& beams) {
   const std::size_t k = std::min(m, cfg_.max_beams);
   bx_.resize(k);
   by_.resize(k);
-  std::vector<float>& ranges = ranges_;
-  ranges.resize(k);
+  ranges_.resize(k);
   // Beams evenly spread over the selection, in bit-reversed order: every prefix spans the
   // scan, so bound() finds a node past its limit after a few of them.
   int bits = 0;
@@ -162,15 +161,15 @@ bool PoseSearch::set_scan(const PreparedBeams& beams) {
     const std::size_t i = (v * m) / k;
     bx_[j] = beams.ex[i];
     by_[j] = beams.ey[i];
-    ranges[j] = std::hypot(bx_[j], by_[j]);
+    ranges_[j] = std::hypot(bx_[j], by_[j]);
     ++j;
   }
   if (k == 0) return false;
   // An endpoint at range r moves r * step between neighbouring headings: keep that within
   // a leaf for 90 % of the beams.
-  std::nth_element(ranges.begin(), ranges.begin() + static_cast<std::ptrdiff_t>((9 * k) / 10),
-                   ranges.end());
-  const double r90 = std::max(1.0, static_cast<double>(ranges[(9 * k) / 10]));
+  std::nth_element(ranges_.begin(), ranges_.begin() + static_cast<std::ptrdiff_t>((9 * k) / 10),
+                   ranges_.end());
+  const double r90 = std::max(1.0, static_cast<double>(ranges_[(9 * k) / 10]));
   angle_step_ =
       std::clamp(static_cast<double>(leaf_cells_) / r90, cfg_.min_angle_step, cfg_.max_angle_step);
   return true;

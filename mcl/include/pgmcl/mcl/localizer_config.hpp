@@ -4,6 +4,7 @@
 /// InvalidConfigField naming the offending field ("filter.kld.epsilon must be ..."). Every
 /// field's unit and allowed values are described once, in config_schema.hpp.
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <numbers>
@@ -34,6 +35,10 @@ struct LikelihoodConfig {
   maps::LikelihoodFieldOptions table{};
   double effective_beams = 20.0;  ///< independent readings a scan is worth; <= 0: `tempering`
   double tempering = 1.0;         ///< fixed exponent in (0, 1], used when effective_beams <= 0
+  /// tau for a scan scored on `beams` readings, before the adaptive limit below.
+  [[nodiscard]] double tempering_for(double beams) const noexcept {
+    return effective_beams > 0.0 ? std::min(1.0, effective_beams / beams) : tempering;
+  }
   /// While not converged, tau is lowered (never raised) so that one scan keeps at least
   /// this fraction of the effective sample size (adaptive tempering, Jasra et al. 2011):
   /// a global search must not collapse onto one lucky particle. 0 disables it.

@@ -338,8 +338,13 @@ def run_all(args, work, env, procs, check):
         done = wait_for(lambda: any(abs(c[0] - ns - tolerance * 1e9) < 1e6 for c in corrections), 10)
         if not done:
             raise RuntimeError(f"the node did not process the scan stamped {t}")
-        with lock:
-            return next((p for p in poses if p[0] == ns), None)
+        # The pose comes on another topic than the transform: it may arrive a little later,
+        # or not at all (a gated scan publishes the transform alone).
+        def pose():
+            with lock:
+                return next((p for p in poses if p[0] == ns), None)
+        wait_for(lambda: pose() is not None, 0.5)
+        return pose()
 
     def truth_at(k):
         t = scans[k].header.stamp.to_sec()

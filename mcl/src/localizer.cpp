@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "hypothesis_tracker.hpp"
+#include "motion_noise_adaptation.hpp"
 #include "stream_keys.hpp"
 
 namespace pgmcl {
@@ -51,6 +52,7 @@ Localizer::Localizer(std::shared_ptr<const maps::LikelihoodField> field,
   thread_policy_ = ThreadPolicy(cfg_.adaptive_threads ? cfg_.threads : 1, &cores_taken);
   threads_ = cfg_.threads;
   init_geometry();
+  motion_noise_ = std::make_unique<detail::MotionNoiseAdaptation>(cfg_.motion);
   if (cfg_.hypotheses.enabled)
     hypotheses_ = std::make_unique<detail::HypothesisTracker>(field_, free_cells_, cfg_.hypotheses,
                                                               cfg_.likelihood);
@@ -158,6 +160,9 @@ void Localizer::reset_after_init() {
   compute_estimate(r);
   clustered_ = r.converged;
   unimodal_ = 0;
+  adaptable_ = false;  // the noise factors learnt so far stay: the same odometry
+  r.rotation_noise_factor = motion_noise_->rotation_factor();
+  r.translation_noise_factor = motion_noise_->translation_factor();
   anchor_ = r.estimate;
   last_ = r;
 }

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "hypothesis_tracker.hpp"
+#include "motion_noise_adaptation.hpp"
 #include "parallel_blocks.hpp"
 #include "pgmcl/mcl/localizer.hpp"
 #include "pgmcl/mcl/weights.hpp"
@@ -123,6 +124,15 @@ UpdateResult Localizer::update(const Pose2& odometry_pose, const LaserScan& scan
   // what it reports also doubts a cluster that another place outweighs so far.
   clustered_ = r.converged;
   unimodal_ = one_mode_ ? unimodal_ + 1 : 0;
+  // The odometry's error between two converged estimates sizes the next motion noise.
+  // Not while another place outweighs the estimate: a filter lost in the wrong place sees
+  // its odometry "miss", and a wider proposal would only spread it further.
+  const bool adaptable = measured && r.converged && !r.switched && r.alternative_evidence <= 0.0;
+  if (adaptable && adaptable_ && r.motion_applied)
+    motion_noise_->observe(delta, anchor_, last_.covariance, r.estimate, r.covariance);
+  adaptable_ = adaptable;
+  r.rotation_noise_factor = motion_noise_->rotation_factor();
+  r.translation_noise_factor = motion_noise_->translation_factor();
   if (r.alternative_evidence > 0.0) r.converged = false;
   r.timings.estimate_ms = ms_since(te);
 
@@ -149,13 +159,14 @@ void Localizer::motion_update(const Pose2& odom_prev, const Pose2& odom_now) {
   float* x = p_.x.data();
   float* y = p_.y.data();
   float* th = p_.theta.data();
-  const MotionConfig& mc = cfg_.motion;
+  const MotionModelKind kind = cfg_.motion.kind;
+  const MotionNoise noise = motion_noise_->noise();
   const std::uint64_t seed = cfg_.seed;
   detail::for_each_block(detail::block_count(n), threads_, [&](std::size_t b) {
     Rng rng = Rng::for_block(seed, step, b);
     const std::size_t hi = std::min(n, (b + 1) * detail::kParticleBlock);
     for (std::size_t i = b * detail::kParticleBlock; i < hi; ++i) {
-      const Pose2 q = sample_motion(mc.kind, mc.noise, inc, {x[i], y[i], th[i]}, rng);
+      const Pose2 q = sample_motion(kind, noise, inc, {x[i], y[i], th[i]}, rng);
       x[i] = static_cast<float>(q.x);
       y[i] = static_cast<float>(q.y);
       th[i] = wrap_angle(static_cast<float>(q.theta));

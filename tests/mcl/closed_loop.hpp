@@ -23,7 +23,8 @@ struct LoopErrors {
   std::size_t first_converged = static_cast<std::size_t>(-1);  // step index, or -1
   std::size_t last_particles = 0;
   std::size_t min_particles = static_cast<std::size_t>(-1);
-  std::vector<double> err_xy;  // per step
+  double last_rotation_noise_factor = 1.0;  // UpdateResult's, last step
+  std::vector<double> err_xy;               // per step
 };
 
 using testkit::theta_error;
@@ -55,6 +56,7 @@ inline LoopErrors run_loop(Localizer& loc, const World& world, const std::vector
     if (r.converged && e.first_converged == static_cast<std::size_t>(-1)) e.first_converged = k;
     e.last_particles = r.particles;
     e.min_particles = std::min(e.min_particles, r.particles);
+    e.last_rotation_noise_factor = r.rotation_noise_factor;
     const Pose2 gt = origin.compose(truth[k]);
     const double dxy = xy_error(r.estimate, gt), dth = theta_error(r.estimate, gt);
     e.err_xy.push_back(dxy);

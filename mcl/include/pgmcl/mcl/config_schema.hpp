@@ -125,6 +125,17 @@ void describe_motion(V& v, Config& c) {
       v.number(Field{"a5", "m²/m²", "omnidirectional only: strafe noise from translation"}, n.a5,
                alpha);
     });
+    v.section("adaptation", [&] {
+      auto& a = c.motion.adaptation;
+      v.flag(Field{"enabled", "", "inflate the noise while the odometry misses the estimates"},
+             a.enabled);
+      v.integer(Field{"window", "updates", "updates whose residuals are pooled (median)"}, a.window,
+                IntRange{3, 100'000});
+      v.number(Field{"margin", "", "on the factor the residuals show (they understate it)"},
+               a.margin, Bounds{1.0, kMaxMotionAlpha});
+      v.number(Field{"max_inflation", "", "largest factor on the noise variances"}, a.max_inflation,
+               Bounds{1.0, kMaxMotionAlpha});
+    });
   });
 }
 

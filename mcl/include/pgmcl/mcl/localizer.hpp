@@ -31,6 +31,7 @@
 namespace pgmcl {
 namespace detail {
 class HypothesisTracker;
+class MotionNoiseAdaptation;
 struct SeedRequest;
 }  // namespace detail
 
@@ -146,6 +147,8 @@ class Localizer {
   double kld_z_ = 0.0;  // normal_quantile(1 - kld.delta)
   ParticleClusterer clusterer_;
   std::unique_ptr<detail::HypothesisTracker> hypotheses_;  // null when disabled
+  std::unique_ptr<detail::MotionNoiseAdaptation> motion_noise_;
+  bool adaptable_ = false;  // the last estimate can anchor a motion residual (converged, measured)
   bool clustered_ = false;  // the last estimate met EstimateConfig's cluster criterion
   bool one_mode_ = false;  // the last estimate: one cluster with nearly all the weight, <= 1 m wide
   int unimodal_ = 0;       // consecutive updates with one_mode_

@@ -18,9 +18,29 @@
 
 namespace pgmcl {
 
+/// Odometry is often noisier than any fixed model says (real wheels, or a log from another
+/// robot), and a proposal narrower than the odometry's error loses track. So the filter
+/// compares each odometry increment with the motion between its own converged estimates:
+/// the squared residual over the variance that the model and the two estimates'
+/// covariances predict, for the heading and along the direction of travel. The median of
+/// that ratio over the last `window` updates, over its median when the model is right
+/// (chi-square, one degree of freedom), times `margin`, scales the rotation terms (a1, a2)
+/// and the translation terms (a3, a4, a5) of the next motion updates; never below the
+/// configured noise. A median, so the glitches the competing hypotheses absorb do not count.
+/// The margin: the residuals understate the odometry's error, because the estimates they
+/// are measured against sit between the truth and the prediction that pulled them there
+/// (bench/robustness/README.md, "Odometry noisier than the model").
+struct MotionAdaptationConfig {
+  bool enabled = true;
+  std::size_t window = 30;      ///< updates pooled; adapts once a third of them are in
+  double margin = 2.0;          ///< on the measured factor
+  double max_inflation = 25.0;  ///< largest variance factor (5x the standard deviations)
+};
+
 struct MotionConfig {
   MotionModelKind kind = MotionModelKind::kDifferentialDrive;
   MotionNoise noise{};  ///< Probabilistic Robotics Table 5.6, variance form (motion_model.hpp)
+  MotionAdaptationConfig adaptation{};
 };
 
 /// How the per-beam log-likelihoods of one scan are combined: a power posterior,

@@ -73,6 +73,10 @@ struct UpdateResult {
   std::size_t seeded = 0;  ///< particles redrawn around searched hypotheses this update
   bool switched = false;   ///< the filter moved to a competitor that outweighed it
   bool searched = false;   ///< a scan-to-map search ran this update (global or rescue)
+  /// Factors on the motion noise's rotation and translation variances that the odometry's
+  /// residuals called for so far (MotionAdaptationConfig); 1 = the configured noise.
+  double rotation_noise_factor = 1.0;
+  double translation_noise_factor = 1.0;
 
   UpdateTimings timings{};
   /// Threads this update's parallel loops ran with: LocalizerConfig::threads, or 1 while

@@ -1,0 +1,84 @@
+#include "motion_noise_adaptation.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace pgmcl::detail {
+namespace {
+
+// Median of a chi-square variable with one degree of freedom: the median of the squared
+// residuals over their predicted variance when the model is right.
+constexpr double kChiSquare1Median = 0.454936423119572;
+// Along-track residuals need a translation to have a direction.
+constexpr double kMinTranslation = 0.05;  // metres
+
+}  // namespace
+
+MotionNoiseAdaptation::MotionNoiseAdaptation(const MotionConfig& motion) : cfg_(motion) {
+  const std::size_t w = cfg_.adaptation.window;
+  rotation_.ratios.assign(w, 0.0);
+  translation_.ratios.assign(w, 0.0);
+  scratch_.reserve(w);
+}
+
+void MotionNoiseAdaptation::Window::push(double v) noexcept {
+  if (ratios.empty()) return;
+  ratios[next] = v;
+  next = (next + 1) % ratios.size();
+  count = std::min(count + 1, ratios.size());
+}
+
+double MotionNoiseAdaptation::Window::factor(std::vector<double>& scratch, double margin,
+                                             double max_factor) const {
+  // A third of the window before the first estimate; a median, so the glitches the
+  // competing hypotheses absorb do not count as noise.
+  if (count == 0 || 3 * count < ratios.size()) return 1.0;
+  scratch.assign(ratios.begin(), ratios.begin() + static_cast<std::ptrdiff_t>(count));
+  const auto upper = scratch.begin() + static_cast<std::ptrdiff_t>(count / 2);
+  std::nth_element(scratch.begin(), upper, scratch.end());
+  double median = *upper;
+  if (count % 2 == 0) median = 0.5 * (median + *std::max_element(scratch.begin(), upper));
+  return std::clamp(margin * median / kChiSquare1Median, 1.0, max_factor);
+}
+
+void MotionNoiseAdaptation::observe(const Pose2& odom_delta, const Pose2& est_prev,
+                                    const Eigen::Matrix3d& cov_prev, const Pose2& est_now,
+                                    const Eigen::Matrix3d& cov_now) {
+  if (!cfg_.adaptation.enabled) return;
+  const MotionNoise& a = cfg_.noise;
+  const OdometryIncrement inc = decompose_odometry(Pose2{}, odom_delta);
+  const double rot2 = inc.rot1 * inc.rot1 + inc.rot2 * inc.rot2;
+  const double trans2 = inc.trans * inc.trans;
+  const Pose2 moved = est_prev.between(est_now);   // what the filter found, robot frame
+  const Eigen::Matrix3d cov = cov_prev + cov_now;  // the two estimates' own uncertainty
+
+  const double var_rot = a.a1 * rot2 + 2.0 * a.a2 * trans2 + cov(2, 2);
+  const double e_rot = wrap_angle(moved.theta - odom_delta.theta);
+  if (var_rot > 0.0 && std::isfinite(e_rot)) rotation_.push(e_rot * e_rot / var_rot);
+
+  if (inc.trans >= kMinTranslation) {
+    const double ux = odom_delta.x / std::hypot(odom_delta.x, odom_delta.y);
+    const double uy = odom_delta.y / std::hypot(odom_delta.x, odom_delta.y);
+    const double c = std::cos(est_prev.theta), s = std::sin(est_prev.theta);
+    const Eigen::Vector2d u_global(c * ux - s * uy, s * ux + c * uy);
+    const double var_along =
+        a.a3 * trans2 + a.a4 * rot2 + u_global.dot(cov.topLeftCorner<2, 2>() * u_global);
+    const double e_along = (moved.x - odom_delta.x) * ux + (moved.y - odom_delta.y) * uy;
+    if (var_along > 0.0 && std::isfinite(e_along)) translation_.push(e_along * e_along / var_along);
+  }
+  const MotionAdaptationConfig& ac = cfg_.adaptation;
+  rotation_factor_ = rotation_.factor(scratch_, ac.margin, ac.max_inflation);
+  translation_factor_ = translation_.factor(scratch_, ac.margin, ac.max_inflation);
+}
+
+MotionNoise MotionNoiseAdaptation::noise() const noexcept {
+  MotionNoise n = cfg_.noise;
+  n.a1 *= rotation_factor_;
+  n.a2 *= rotation_factor_;
+  n.a3 *= translation_factor_;
+  n.a4 *= translation_factor_;
+  n.a5 *= translation_factor_;
+  return n;
+}
+
+}  // namespace pgmcl::detail

@@ -35,7 +35,8 @@ void write_updates_csv(const std::string& path, const std::vector<replay::Update
   std::ofstream f(path);
   if (!f) throw io::IoError(path + ": cannot create file");
   f << "stamp,x,y,theta,skipped,converged,fit,n_eff,particles,competitors,evidence,seeded,"
-       "injected,switched,searched,error_m,error_deg\n";
+       "injected,switched,searched,rotation_noise_factor,translation_noise_factor,error_m,error_"
+       "deg\n";
   char buf[512];
   for (const replay::UpdateRow& u : rows) {
     double e = std::nan(""), eth = std::nan("");
@@ -45,12 +46,13 @@ void write_updates_csv(const std::string& path, const std::vector<replay::Update
         eth = std::abs(wrap_angle(t->theta - u.estimate.theta)) * kRadToDeg;
       }
     }
-    std::snprintf(buf, sizeof buf,
-                  "%.6f,%.4f,%.4f,%.5f,%d,%d,%.3f,%.1f,%zu,%zu,%.2f,%zu,%zu,%d,%d,%.4f,%.2f\n",
-                  u.stamp, u.estimate.x, u.estimate.y, u.estimate.theta,
-                  static_cast<int>(u.skipped), u.converged ? 1 : 0, u.fit, u.n_eff, u.particles,
-                  u.competitors, u.evidence, u.seeded, u.injected, u.switched ? 1 : 0,
-                  u.searched ? 1 : 0, e, eth);
+    std::snprintf(
+        buf, sizeof buf,
+        "%.6f,%.4f,%.4f,%.5f,%d,%d,%.3f,%.1f,%zu,%zu,%.2f,%zu,%zu,%d,%d,%.2f,%.2f,%.4f,%.2f\n",
+        u.stamp, u.estimate.x, u.estimate.y, u.estimate.theta, static_cast<int>(u.skipped),
+        u.converged ? 1 : 0, u.fit, u.n_eff, u.particles, u.competitors, u.evidence, u.seeded,
+        u.injected, u.switched ? 1 : 0, u.searched ? 1 : 0, u.rotation_noise_factor,
+        u.translation_noise_factor, e, eth);
     f << buf;
   }
   f.close();
@@ -212,6 +214,13 @@ std::string summary_line(const io::RunMetrics& m, const std::string& out_dir,
   n = std::snprintf(buf, sizeof buf, ", %.0f beams, fit %.2f, converged on %.0f %% of updates",
                     m.beams_used_mean, m.fit_mean, 100.0 * m.converged_fraction);
   s.append(buf, static_cast<std::size_t>(std::max(n, 0)));
+  if (m.rotation_noise_factor > 1.0 || m.translation_noise_factor > 1.0) {
+    n = std::snprintf(buf, sizeof buf,
+                      ", odometry noisier than the model: variances x%.1f (rotation), x%.1f "
+                      "(translation) by the end",
+                      m.rotation_noise_factor, m.translation_noise_factor);
+    s.append(buf, static_cast<std::size_t>(std::max(n, 0)));
+  }
   if (m.accuracy) {
     const auto& a = *m.accuracy;
     n = std::snprintf(buf, sizeof buf, "; ATE RMSE %.3f m (max %.3f), heading RMSE %.2f deg",

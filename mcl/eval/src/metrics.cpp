@@ -90,6 +90,8 @@ std::vector<MetricEntry> metrics_entries(const RunMetrics& m, bool run_figures) 
         real("beams_used_mean", m.beams_used_mean),
         real("fit_mean", m.fit_mean),
         real("converged_fraction", m.converged_fraction),
+        real("rotation_noise_factor", m.rotation_noise_factor),
+        real("translation_noise_factor", m.translation_noise_factor),
         flag("complete", m.complete),
         count("warning_count", m.warnings.size()),
     };
@@ -162,6 +164,8 @@ RunMetrics MetricsAccumulator::summarise(double wall_s) const {
   m.updates = update_ms_.size();
   m.skipped_updates = skipped_;
   m.wall_s = wall_s;
+  m.rotation_noise_factor = rotation_noise_factor_;
+  m.translation_noise_factor = translation_noise_factor_;
   if (!update_ms_.empty()) {
     const double n = static_cast<double>(update_ms_.size());
     double sum = 0.0;

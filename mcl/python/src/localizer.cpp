@@ -187,6 +187,11 @@ void bind_result(py::module_& m) {
                     "The filter moved to a competitor that outweighed it.")
       .def_readonly("searched", &UpdateResult::searched,
                     "A scan-to-map search ran this update (global or rescue).")
+      .def_readonly("rotation_noise_factor", &UpdateResult::rotation_noise_factor,
+                    "Factor on the motion noise's rotation variances that the odometry's "
+                    "residuals called for so far (1 = the configured noise).")
+      .def_readonly("translation_noise_factor", &UpdateResult::translation_noise_factor,
+                    "The same for the translation variances.")
       .def_property_readonly(
           "timings",
           [](const UpdateResult& r) {

@@ -124,6 +124,7 @@ std::shared_ptr<RunData> localize(py::handle map, py::handle log, py::handle ini
 py::dict updates_dict(const std::vector<replay::UpdateRow>& rows) {
   const auto n = static_cast<py::ssize_t>(rows.size());
   py::array_t<double> stamp(n), x(n), y(n), theta(n), fit(n), n_eff(n), evidence(n);
+  py::array_t<double> rotation_noise_factor(n), translation_noise_factor(n);
   py::array_t<bool> converged(n), switched(n), searched(n);
   py::array_t<std::int64_t> particles(n), competitors(n), seeded(n), injected(n);
   py::list skipped;
@@ -145,6 +146,8 @@ py::dict updates_dict(const std::vector<replay::UpdateRow>& rows) {
     injected.mutable_at(i) = static_cast<std::int64_t>(u.injected);
     switched.mutable_at(i) = u.switched;
     searched.mutable_at(i) = u.searched;
+    rotation_noise_factor.mutable_at(i) = u.rotation_noise_factor;
+    translation_noise_factor.mutable_at(i) = u.translation_noise_factor;
   }
   py::dict d;
   d["stamp"] = stamp;
@@ -162,6 +165,8 @@ py::dict updates_dict(const std::vector<replay::UpdateRow>& rows) {
   d["injected"] = injected;
   d["switched"] = switched;
   d["searched"] = searched;
+  d["rotation_noise_factor"] = rotation_noise_factor;
+  d["translation_noise_factor"] = translation_noise_factor;
   return d;
 }
 
@@ -246,7 +251,8 @@ void bind_runs(py::module_& m) {
           "updates", [](const RunData& d) { return updates_dict(d.result.rows); },
           "updates.csv as a dict of (N,) arrays: stamp, x, y, theta, skipped (None or the "
           "reason), converged, fit, n_eff, particles, competitors, evidence, seeded, "
-          "injected, switched, searched (pandas.DataFrame(run.updates) makes the table).")
+          "injected, switched, searched, rotation_noise_factor, translation_noise_factor "
+          "(pandas.DataFrame(run.updates) makes the table).")
       .def_property_readonly(
           "errors",
           [](py::object self) -> py::object {
@@ -312,9 +318,8 @@ void bind_runs(py::module_& m) {
 
   m.def("localize", &localize, py::arg("map"), py::arg("log"), py::arg("init") = py::none(),
         py::arg("config") = py::none(), py::arg("seed") = 1, py::arg("threads") = 1,
-        py::arg("truth") = py::none(),
-        py::arg("relations") = py::none(), py::arg("time_offset") = 0.0,
-        py::arg("init_sigma") = py::none(),
+        py::arg("truth") = py::none(), py::arg("relations") = py::none(),
+        py::arg("time_offset") = 0.0, py::arg("init_sigma") = py::none(),
         R"doc(Localises a whole log on a map, as ``pgmcl localize`` (pgmcl::replay), in memory.
 
 ``map``: a Map or map YAML path. ``log``: a Log or CARMEN path. ``config``: a Config, a

@@ -186,6 +186,8 @@ UpdateRow UpdateRow::of(double stamp, const UpdateResult& r) {
   u.injected = r.injected;
   u.switched = r.switched;
   u.searched = r.searched;
+  u.rotation_noise_factor = r.rotation_noise_factor;
+  u.translation_noise_factor = r.translation_noise_factor;
   return u;
 }
 
@@ -254,6 +256,7 @@ ReplayResult run(const ReplayJob& job, const ReplayHooks& hooks) {
     out.rows.push_back(UpdateRow::of(s.stamp, r));
     if (r.skipped == SkipReason::kNone) {
       acc.add_update(r.timings.total_ms, r.particles, r.beams_used, r.fit, r.converged);
+      acc.set_noise_factors(r.rotation_noise_factor, r.translation_noise_factor);
     } else {
       acc.add_skipped();
     }

@@ -64,6 +64,10 @@ struct RunMetrics {
   double beams_used_mean = 0.0;     ///< over performed updates
   double fit_mean = 0.0;            ///< UpdateResult::fit over performed updates
   double converged_fraction = 0.0;  ///< of performed updates that reported `converged`
+  /// UpdateResult's motion-noise factors at the run's last update: how much noisier than the
+  /// configured model the odometry turned out (1 = not noisier, or not adapted).
+  double rotation_noise_factor = 1.0;
+  double translation_noise_factor = 1.0;
   /// false: the run was stopped (SIGINT, SIGTERM) and these figures cover its first part.
   bool complete = true;
   /// What was reported as a warning during the run (skipped scans, doubtful inputs).
@@ -85,6 +89,11 @@ class MetricsAccumulator {
   void add_update(double update_ms, std::size_t particles, std::size_t beams_used, double fit = 0.0,
                   bool converged = false);
   void add_skipped() { ++skipped_; }
+  /// The motion-noise factors in use (UpdateResult's); the last call's are reported.
+  void set_noise_factors(double rotation, double translation) {
+    rotation_noise_factor_ = rotation;
+    translation_noise_factor_ = translation;
+  }
   /// Means and the p95 so far; accuracy and relations are left empty.
   [[nodiscard]] RunMetrics summarise(double wall_s) const;
 
@@ -96,6 +105,7 @@ class MetricsAccumulator {
   double fit_sum_ = 0.0;
   std::size_t converged_ = 0;
   std::size_t skipped_ = 0;
+  double rotation_noise_factor_ = 1.0, translation_noise_factor_ = 1.0;
 };
 
 /// One figure of metrics.yaml. Counts are whole numbers; `kNull` is a figure that does not

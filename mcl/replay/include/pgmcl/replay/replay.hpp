@@ -58,6 +58,7 @@ struct UpdateRow {
   double evidence = 0.0;  ///< UpdateResult::alternative_evidence
   std::size_t particles = 0, competitors = 0, seeded = 0, injected = 0;
   bool switched = false, searched = false;
+  double rotation_noise_factor = 1.0, translation_noise_factor = 1.0;  ///< UpdateResult's
   [[nodiscard]] static UpdateRow of(double stamp, const UpdateResult& r);
 };
 

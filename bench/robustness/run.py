@@ -55,6 +55,12 @@ CONDITIONS = {
     # A 2 m wheel slip on 1 % of the steps (steps as above).
     "slip": (REALISTIC + ["--translation-glitch", "0.01,2", "--min-scan-travel", "0.3,15"],
              "map", None),
+    # Odometry noisier than the filter's default model (= REALISTIC) assumes, as the held-out
+    # logs' synthetic odometry is (rotation noise 5x wider made them track): rotation
+    # variances 5x, translation 2x; and, noisier, 10x and 4x (22 % of rotation, 4 deg/m, 14 %
+    # of distance).
+    "noisy": (["--odom-noise", "0.025,0.0025,0.01,0.001"], "map", None),
+    "noisier": (["--odom-noise", "0.05,0.005,0.02,0.002"], "map", None),
     # 2. systematic bias: 1.5 % distance scale, 0.4 deg/m yaw drift.
     "bias": (REALISTIC + ["--scale-bias", "0.015", "--yaw-drift", "0.4"], "map", None),
     # 3. sparse scans: at least 1.2 m or 35 deg between scans, and 2 s.
@@ -185,7 +191,8 @@ def main():
     ap.add_argument("--data", default=os.path.join(ROOT, "..", "shared", "data"))
     ap.add_argument("--pgmcl", default=os.path.join(ROOT, "build", "release", "pgmcl"))
     ap.add_argument("--out", default=os.path.join(ROOT, "results", "bench", "robustness"))
-    ap.add_argument("--seeds", type=int, default=5)
+    ap.add_argument("--seeds", type=int, default=5, help="how many seeds")
+    ap.add_argument("--first-seed", type=int, default=1, help="seeds first-seed .. first-seed + seeds - 1")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--logs", default="intel,aces,fr079,csail-raw")
     ap.add_argument("--conditions", default=",".join(DEFAULT_CONDITIONS))
@@ -194,6 +201,9 @@ def main():
     ap.add_argument("--tag", default="", help="suffix of the output files")
     ap.add_argument("--ci", action="store_true",
                     help="exit with status 1 naming every run that misses its bound")
+    ap.add_argument("--known-failure", action="append", default=[], metavar="LOG:CONDITION:MODE:SEED",
+                    help="with --ci: a run listed in the README as failing; it does not fail the "
+                         "suite, and is reported once it passes")
     a = ap.parse_args()
     if not os.access(a.pgmcl, os.X_OK):
         sys.exit(f"run.py: {a.pgmcl} is not an executable (build it: cmake --build build/release --target pgmcl)")
@@ -244,9 +254,14 @@ def main():
         else:
             raw = os.path.join(case, f"{cond}-s{seed}.log.gz")
             truth = os.path.join(case, f"{cond}-s{seed}.tum")
-            if not os.path.exists(truth):
+            # A case is made again when its condition's options changed since.
+            stamp = os.path.join(case, f"{cond}-s{seed}.options")
+            made_with = open(stamp).read() if os.path.exists(stamp) else None
+            if made_with != " ".join(opts) or not os.path.exists(truth):
                 run([a.pgmcl, "perturb", "--log", source, "--seed", str(seed), "--out", raw,
                      "--truth-out", truth, "--quiet"] + opts)
+                with open(stamp, "w") as f:
+                    f.write(" ".join(opts))
         out = os.path.join(a.out, "runs", f"{name}-{mode}")
         cmd = [a.pgmcl, "localize", "--map", os.path.join(case, variant + ".yaml"), "--log", raw,
                "--truth", truth, "--seed", str(seed), "--out", out, "--quiet"]
@@ -264,13 +279,13 @@ def main():
                 "lost_run": lost_run, **{k: m.get(k) for k in (
                     "ate_rmse_m", "ate_max_m", "false_converged",
                     "false_converged_run", "converged_fraction", "fit_mean", "update_ms_mean",
-                    "particles_mean")}}
+                    "particles_mean", "rotation_noise_factor", "translation_noise_factor")}}
 
     # Perturbed logs are shared by both modes: make them first, then run everything.
-    tasks = [(j, s, mode) for j in jobs for s in range(1, a.seeds + 1) for mode in modes]
+    tasks = [(j, s, mode) for j in jobs for s in range(a.first_seed, a.first_seed + a.seeds) for mode in modes]
     rows = []
     with concurrent.futures.ThreadPoolExecutor(max_workers=a.jobs) as pool:
-        firsts = [pool.submit(one, j, s, modes[0]) for j in jobs for s in range(1, a.seeds + 1)]
+        firsts = [pool.submit(one, j, s, modes[0]) for j in jobs for s in range(a.first_seed, a.first_seed + a.seeds)]
         rows += [f.result() for f in firsts]
         rest = [pool.submit(one, j, s, mode) for (j, s, mode) in tasks if mode != modes[0]]
         rows += [f.result() for f in rest]
@@ -281,7 +296,12 @@ def main():
         w.writeheader()
         w.writerows(rows)
     write_summary(rows, os.path.join(a.out, f"summary{a.tag}.md"), a)
-    failed = [r for r in rows if not r["success"]]
+    known = set(a.known_failure)
+    key = lambda r: f"{r['log']}:{r['condition']}:{r['mode']}:{r['seed']}"
+    for r in rows:
+        if key(r) in known:
+            print(f"known failure {key(r)}: {'still fails' if not r['success'] else 'now PASSES: drop it from the list'}")
+    failed = [r for r in rows if not r["success"] and key(r) not in known]
     if a.ci and failed:
         for r in failed:
             print(f"FAILED: {r['log']} {r['condition']} {r['mode']} seed {r['seed']}: "
@@ -302,8 +322,8 @@ def write_summary(rows, path, a):
         groups.setdefault((r["condition"], r["mode"]), []).append(r)
     order = list(CONDITIONS) + ["real"]
     lines = ["| condition | mode | logs | success | ATE median (worst) m | lock-on median (worst) s |"
-             " wrongly converged (longest run) | ms/update | particles |",
-             "|---|---|---|---|---|---|---|---|---|"]
+             " wrongly converged (longest run) | ms/update | particles | noise factors |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
     total = ok = 0
     for (cond, mode) in sorted(groups, key=lambda k: (order.index(k[0]) if k[0] in order else 99, k[1])):
         g = groups[(cond, mode)]
@@ -316,12 +336,15 @@ def write_summary(rows, path, a):
         ms = statistics.mean(r["update_ms_mean"] for r in g)
         parts = statistics.mean(r["particles_mean"] for r in g)
         logs = ",".join(sorted({r["log"] for r in g}))
+        # The motion-noise factors (rotation, translation) the runs ended with, medians.
+        rot = statistics.median(r["rotation_noise_factor"] or 1.0 for r in g)
+        trans = statistics.median(r["translation_noise_factor"] or 1.0 for r in g)
         lines.append(f"| {cond} | {mode} | {logs} | {k}/{n} | {fmt(statistics.median(ates)) if ates else '—'}"
                      f" ({fmt(max(ates)) if ates else '—'}) | {statistics.median(locks):.1f} ({max(locks):.1f}) |"
-                     f" {fc} ({fr}) | {ms:.2f} | {parts:.0f} |")
+                     f" {fc} ({fr}) | {ms:.2f} | {parts:.0f} | {rot:.1f}, {trans:.1f} |")
     lines.append("")
     lines.append(f"All: {ok}/{total} runs succeed ({100.0 * ok / max(1, total):.1f} %). "
-                 f"Seeds 1..{a.seeds}; extra settings: {' '.join(a.set) or 'none (engine defaults)'}.")
+                 f"Seeds {a.first_seed}..{a.first_seed + a.seeds - 1}; extra settings: {' '.join(a.set) or 'none (engine defaults)'}.")
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
     print("\n".join(lines))

@@ -140,7 +140,7 @@ void HypothesisTracker::rescue(const Scored& ref, int widen, bool abrupt, Hypoth
 }
 
 double HypothesisTracker::rescue_half_theta(int widen) const noexcept {
-  return std::min(std::numbers::pi, cfg_.rescue_theta * std::max(1, widen));
+  return std::min(std::numbers::pi, heading_window_ * std::max(1, widen));
 }
 
 bool HypothesisTracker::in_rescue_window(const Pose2& pose, const Pose2& ref) const noexcept {
@@ -223,7 +223,9 @@ bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, doubl
   // on) needs only to stay ahead over rival_view metres of new view.
   if (c.origin == Competitor::Origin::kGlobal) return c.view >= cfg_.rival_view && c.age >= 1;
   const double moved = std::hypot(c.pose.x - ref.pose.x, c.pose.y - ref.pose.y);
-  const bool nearby = moved <= std::max(kGlitchReach, std::sin(cfg_.rescue_theta) * step);
+  const bool nearby =
+      moved <=
+      std::max(kGlitchReach, std::sin(std::min(heading_window_, 0.5 * std::numbers::pi)) * step);
   const double turned = std::abs(wrap_angle(c.pose.theta - ref.pose.theta));
   // Confirmed, within a glitch's reach: its readings cross almost no wall, clearly fewer
   // than the prediction's, and more of them fit. Where clutter keeps every fit low, that
@@ -238,7 +240,7 @@ bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, doubl
   if (!confirmed && c.fit < (c.abrupt ? kNormalFit : 1.0) * usual) return false;
   if (c.age == 0)  // at once, with this very scan: a glitch-sized correction only
     return c.origin == Competitor::Origin::kRescue && abrupt && lost && nearby &&
-           turned <= cfg_.rescue_theta && c.fit >= fit + (confirmed ? kConfirmGain : kGlitchGain);
+           turned <= heading_window_ && c.fit >= fit + (confirmed ? kConfirmGain : kGlitchGain);
   if (c.origin == Competitor::Origin::kSweep) {
     // A kidnapping: several scans, still lost.
     if (c.abrupt && lost && c.age + 1 >= kKidnapScans && lost_updates_ >= kKidnapScans &&

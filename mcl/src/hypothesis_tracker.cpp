@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <utility>
 
 namespace pgmcl::detail {
@@ -65,8 +66,10 @@ void HypothesisTracker::converged(const Pose2& estimate) {
 HypothesisStep HypothesisTracker::update(const LaserScan& scan,
                                          std::span<const std::uint32_t> selected,
                                          const PreparedBeams& beams, const Pose2& prediction,
-                                         const Pose2& delta, std::size_t particles) {
+                                         const Pose2& delta, std::size_t particles,
+                                         double heading_spread) {
   HypothesisStep out;
+  heading_window_ = std::min(std::numbers::pi, std::max(cfg_.rescue_theta, heading_spread));
   if (!search_.set_scan(beams)) return out;
   beams_used_ = beams.size();
   beams_ = &beams;

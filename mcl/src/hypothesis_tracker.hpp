@@ -58,9 +58,11 @@ class HypothesisTracker {
 
   /// One update. `selected` indexes scan.ranges; `beams` is the prepared selection;
   /// `prediction` (map-local) the last estimate moved by `delta`, the odometry increment.
+  /// `heading_spread` (radians): how far the odometry's heading may be off over `delta`
+  /// under the motion noise in use (3 sigma); the rescue window is at least that wide.
   HypothesisStep update(const LaserScan& scan, std::span<const std::uint32_t> selected,
                         const PreparedBeams& beams, const Pose2& prediction, const Pose2& delta,
-                        std::size_t particles);
+                        std::size_t particles, double heading_spread = 0.0);
 
   /// While tracking, a redrawn lineage farther than this (metres) from the prediction stays
   /// on probation (RecoveryConfig) until the prediction has lost the scan for
@@ -147,6 +149,7 @@ class HypothesisTracker {
   const PreparedBeams* beams_ = nullptr;     // this update's selected beams (during update())
   float sensor_x_ = 0.0f, sensor_y_ = 0.0f;  // the sensor in the base frame, cells
   double resolution_ = 0.0;
+  double heading_window_ = 0.0;  // rescue_theta, or the odometry's heading spread if wider
 
   bool global_ = true;
   std::vector<Pose2> global_places_;  // the last global search's refined candidates

@@ -186,8 +186,11 @@ bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, Up
   if (hypotheses_) {
     // Competing hypotheses may redraw some particles before the scan scores them all.
     const auto th = Clock::now();
-    const detail::HypothesisStep h =
-        hypotheses_->update(scan, ws_.selected_beams, model_.beams(), prediction, delta, p_.size());
+    // The rescue search covers at least the heading error the motion noise allows (3 sigma):
+    // a long turn between sparse scans on noisy odometry can exceed its fixed window.
+    const double heading_spread = 3.0 * motion_noise_->heading_sigma(delta);
+    const detail::HypothesisStep h = hypotheses_->update(
+        scan, ws_.selected_beams, model_.beams(), prediction, delta, p_.size(), heading_spread);
     seed_particles(h.seed);
     r.seeded = h.seed.poses.empty() ? 0 : std::min(h.seed.count, p_.size());
     r.switched = h.switched;

@@ -12,6 +12,11 @@ constexpr double kChiSquare1Median = 0.454936423119572;
 // Along-track residuals need a translation to have a direction.
 constexpr double kMinTranslation = 0.05;  // metres
 
+// Table 5.6's variance of the heading change: rot1 and rot2 each draw a1 rot^2 + a2 trans^2.
+double heading_variance(const MotionNoise& a, const OdometryIncrement& inc) noexcept {
+  return a.a1 * (inc.rot1 * inc.rot1 + inc.rot2 * inc.rot2) + 2.0 * a.a2 * inc.trans * inc.trans;
+}
+
 }  // namespace
 
 MotionNoiseAdaptation::MotionNoiseAdaptation(const MotionConfig& motion) : cfg_(motion) {
@@ -52,7 +57,7 @@ void MotionNoiseAdaptation::observe(const Pose2& odom_delta, const Pose2& est_pr
   const Pose2 moved = est_prev.between(est_now);   // what the filter found, robot frame
   const Eigen::Matrix3d cov = cov_prev + cov_now;  // the two estimates' own uncertainty
 
-  const double var_rot = a.a1 * rot2 + 2.0 * a.a2 * trans2 + cov(2, 2);
+  const double var_rot = heading_variance(a, inc) + cov(2, 2);
   const double e_rot = wrap_angle(moved.theta - odom_delta.theta);
   if (var_rot > 0.0 && std::isfinite(e_rot)) rotation_.push(e_rot * e_rot / var_rot);
 
@@ -69,6 +74,10 @@ void MotionNoiseAdaptation::observe(const Pose2& odom_delta, const Pose2& est_pr
   const MotionAdaptationConfig& ac = cfg_.adaptation;
   rotation_factor_ = rotation_.factor(scratch_, ac.margin, ac.max_inflation);
   translation_factor_ = translation_.factor(scratch_, ac.margin, ac.max_inflation);
+}
+
+double MotionNoiseAdaptation::heading_sigma(const Pose2& odom_delta) const noexcept {
+  return std::sqrt(heading_variance(noise(), decompose_odometry(Pose2{}, odom_delta)));
 }
 
 MotionNoise MotionNoiseAdaptation::noise() const noexcept {

@@ -25,6 +25,9 @@ class MotionNoiseAdaptation {
   /// The configured noise with its rotation terms (a1, a2) and translation terms (a3, a4,
   /// a5) multiplied by the current factors.
   [[nodiscard]] MotionNoise noise() const noexcept;
+  /// Standard deviation of the odometry's heading error over `odom_delta` (robot frame)
+  /// under noise(), radians.
+  [[nodiscard]] double heading_sigma(const Pose2& odom_delta) const noexcept;
   [[nodiscard]] double rotation_factor() const noexcept { return rotation_factor_; }
   [[nodiscard]] double translation_factor() const noexcept { return translation_factor_; }
 

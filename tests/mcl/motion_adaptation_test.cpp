@@ -4,6 +4,7 @@
 // the filter on the path where the fixed noise loses it.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <numbers>
 #include <vector>
@@ -111,6 +112,18 @@ TEST(MotionNoiseAdaptation, RareGlitchesDoNotCountAsNoise) {
   // A mean would have been thrown far: (30 deg)^2 / var is ~ 10^3 per glitch.
   const Adapted every_step = adapted(margin_one(), {.glitch_rate = 1.0});
   EXPECT_EQ(every_step.state.rotation_factor(), margin_one().adaptation.max_inflation);
+}
+
+TEST(MotionNoiseAdaptation, HeadingSigmaIsTable56UnderTheAdaptedNoise) {
+  const MotionConfig cfg = margin_one();
+  const Pose2 delta{0.8, 0.3, 1.2};  // robot frame
+  const OdometryIncrement inc = decompose_odometry(Pose2{}, delta);
+  const double var = cfg.noise.a1 * (inc.rot1 * inc.rot1 + inc.rot2 * inc.rot2) +
+                     2.0 * cfg.noise.a2 * inc.trans * inc.trans;
+  EXPECT_NEAR(detail::MotionNoiseAdaptation(cfg).heading_sigma(delta), std::sqrt(var), 1e-12);
+  const Adapted a = adapted(cfg, {.rotation_scale = 5.0});
+  ASSERT_GT(a.state.rotation_factor(), 2.0);
+  EXPECT_NEAR(a.state.heading_sigma(delta), std::sqrt(a.state.rotation_factor() * var), 1e-12);
 }
 
 TEST(MotionNoiseAdaptation, UncertainEstimatesExplainTheResiduals) {

@@ -148,7 +148,7 @@ class Localizer {
   ParticleClusterer clusterer_;
   std::unique_ptr<detail::HypothesisTracker> hypotheses_;  // null when disabled
   std::unique_ptr<detail::MotionNoiseAdaptation> motion_noise_;
-  bool adaptable_ = false;  // the last estimate can anchor a motion residual (converged, measured)
+  bool adaptable_ = false;  // the last estimate can anchor a motion residual (see update())
   bool clustered_ = false;  // the last estimate met EstimateConfig's cluster criterion
   bool one_mode_ = false;  // the last estimate: one cluster with nearly all the weight, <= 1 m wide
   int unimodal_ = 0;       // consecutive updates with one_mode_

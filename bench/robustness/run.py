@@ -282,10 +282,11 @@ def main():
                     "particles_mean", "rotation_noise_factor", "translation_noise_factor")}}
 
     # Perturbed logs are shared by both modes: make them first, then run everything.
-    tasks = [(j, s, mode) for j in jobs for s in range(a.first_seed, a.first_seed + a.seeds) for mode in modes]
+    seeds = range(a.first_seed, a.first_seed + a.seeds)
+    tasks = [(j, s, mode) for j in jobs for s in seeds for mode in modes]
     rows = []
     with concurrent.futures.ThreadPoolExecutor(max_workers=a.jobs) as pool:
-        firsts = [pool.submit(one, j, s, modes[0]) for j in jobs for s in range(a.first_seed, a.first_seed + a.seeds)]
+        firsts = [pool.submit(one, j, s, modes[0]) for j in jobs for s in seeds]
         rows += [f.result() for f in firsts]
         rest = [pool.submit(one, j, s, mode) for (j, s, mode) in tasks if mode != modes[0]]
         rows += [f.result() for f in rest]

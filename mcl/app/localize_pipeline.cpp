@@ -35,8 +35,8 @@ void write_updates_csv(const std::string& path, const std::vector<replay::Update
   std::ofstream f(path);
   if (!f) throw io::IoError(path + ": cannot create file");
   f << "stamp,x,y,theta,skipped,converged,fit,n_eff,particles,competitors,evidence,seeded,"
-       "injected,switched,searched,rotation_noise_factor,translation_noise_factor,error_m,error_"
-       "deg\n";
+       "injected,switched,searched,rotation_noise_factor,translation_noise_factor,"
+       "error_m,error_deg\n";
   char buf[512];
   for (const replay::UpdateRow& u : rows) {
     double e = std::nan(""), eth = std::nan("");

@@ -62,7 +62,7 @@ class HypothesisTracker {
   /// under the motion noise in use (3 sigma); the rescue window is at least that wide.
   HypothesisStep update(const LaserScan& scan, std::span<const std::uint32_t> selected,
                         const PreparedBeams& beams, const Pose2& prediction, const Pose2& delta,
-                        std::size_t particles, double heading_spread = 0.0);
+                        std::size_t particles, double heading_spread);
 
   /// While tracking, a redrawn lineage farther than this (metres) from the prediction stays
   /// on probation (RecoveryConfig) until the prediction has lost the scan for

@@ -52,8 +52,6 @@ void MotionNoiseAdaptation::observe(const Pose2& odom_delta, const Pose2& est_pr
   if (!cfg_.adaptation.enabled) return;
   const MotionNoise& a = cfg_.noise;
   const OdometryIncrement inc = decompose_odometry(Pose2{}, odom_delta);
-  const double rot2 = inc.rot1 * inc.rot1 + inc.rot2 * inc.rot2;
-  const double trans2 = inc.trans * inc.trans;
   const Pose2 moved = est_prev.between(est_now);   // what the filter found, robot frame
   const Eigen::Matrix3d cov = cov_prev + cov_now;  // the two estimates' own uncertainty
 
@@ -62,12 +60,12 @@ void MotionNoiseAdaptation::observe(const Pose2& odom_delta, const Pose2& est_pr
   if (var_rot > 0.0 && std::isfinite(e_rot)) rotation_.push(e_rot * e_rot / var_rot);
 
   if (inc.trans >= kMinTranslation) {
-    const double ux = odom_delta.x / std::hypot(odom_delta.x, odom_delta.y);
-    const double uy = odom_delta.y / std::hypot(odom_delta.x, odom_delta.y);
+    const double ux = odom_delta.x / inc.trans, uy = odom_delta.y / inc.trans;
     const double c = std::cos(est_prev.theta), s = std::sin(est_prev.theta);
     const Eigen::Vector2d u_global(c * ux - s * uy, s * ux + c * uy);
-    const double var_along =
-        a.a3 * trans2 + a.a4 * rot2 + u_global.dot(cov.topLeftCorner<2, 2>() * u_global);
+    const double var_along = a.a3 * (inc.trans * inc.trans) +
+                             a.a4 * (inc.rot1 * inc.rot1 + inc.rot2 * inc.rot2) +
+                             u_global.dot(cov.topLeftCorner<2, 2>() * u_global);
     const double e_along = (moved.x - odom_delta.x) * ux + (moved.y - odom_delta.y) * uy;
     if (var_along > 0.0 && std::isfinite(e_along)) translation_.push(e_along * e_along / var_along);
   }

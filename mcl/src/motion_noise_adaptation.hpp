@@ -14,7 +14,6 @@ namespace pgmcl::detail {
 
 class MotionNoiseAdaptation {
  public:
-  MotionNoiseAdaptation() = default;
   explicit MotionNoiseAdaptation(const MotionConfig& motion);
 
   /// One step between two converged estimates (global frame, with their covariances) over

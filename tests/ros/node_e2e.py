@@ -71,6 +71,16 @@ class Processes:
             out.close()
 
 
+def node_state(node, log_path, corrections):
+    """What a failed wait needs to say: whether the node still runs, the newest correction
+    it published and the end of its log (CI keeps only the test's output)."""
+    state = ("running" if node.poll() is None else f"exited with {node.returncode}")
+    newest = max((c[0] for c in corrections), default=None)
+    tail = open(log_path, errors="replace").read().splitlines()[-5:]
+    return (f"pgmcl_node {state}; newest map->odom stamped "
+            f"{newest and newest / 1e9}; its log ends:\n    " + "\n    ".join(tail))
+
+
 def free_port():
     s = socket.socket()
     s.bind(("127.0.0.1", 0))
@@ -337,7 +347,8 @@ def run_all(args, work, env, procs, check):
         ns = m.header.stamp.to_nsec()
         done = wait_for(lambda: any(abs(c[0] - ns - tolerance * 1e9) < 1e6 for c in corrections), 10)
         if not done:
-            raise RuntimeError(f"the node did not process the scan stamped {t}")
+            raise RuntimeError(f"the node did not process the scan stamped {t}: "
+                               + node_state(node, f"{work}/pgmcl_node.log", corrections))
         # The pose comes on another topic than the transform: it may arrive a little later,
         # or not at all (a gated scan publishes the transform alone).
         def pose():

@@ -12,9 +12,13 @@ constexpr double kChiSquare1Median = 0.454936423119572;
 // Along-track residuals need a translation to have a direction.
 constexpr double kMinTranslation = 0.05;  // metres
 
-// Table 5.6's variance of the heading change: rot1 and rot2 each draw a1 rot^2 + a2 trans^2.
+// Table 5.6's variances: of the heading change (rot1 and rot2 each draw a1 rot^2 + a2
+// trans^2) and of the translation (a3 trans^2 + a4 (rot1^2 + rot2^2)).
 double heading_variance(const MotionNoise& a, const OdometryIncrement& inc) noexcept {
   return a.a1 * (inc.rot1 * inc.rot1 + inc.rot2 * inc.rot2) + 2.0 * a.a2 * inc.trans * inc.trans;
+}
+double translation_variance(const MotionNoise& a, const OdometryIncrement& inc) noexcept {
+  return a.a3 * (inc.trans * inc.trans) + a.a4 * (inc.rot1 * inc.rot1 + inc.rot2 * inc.rot2);
 }
 
 }  // namespace
@@ -63,9 +67,8 @@ void MotionNoiseAdaptation::observe(const Pose2& odom_delta, const Pose2& est_pr
     const double ux = odom_delta.x / inc.trans, uy = odom_delta.y / inc.trans;
     const double c = std::cos(est_prev.theta), s = std::sin(est_prev.theta);
     const Eigen::Vector2d u_global(c * ux - s * uy, s * ux + c * uy);
-    const double var_along = a.a3 * (inc.trans * inc.trans) +
-                             a.a4 * (inc.rot1 * inc.rot1 + inc.rot2 * inc.rot2) +
-                             u_global.dot(cov.topLeftCorner<2, 2>() * u_global);
+    const double var_along =
+        translation_variance(a, inc) + u_global.dot(cov.topLeftCorner<2, 2>() * u_global);
     const double e_along = (moved.x - odom_delta.x) * ux + (moved.y - odom_delta.y) * uy;
     if (var_along > 0.0 && std::isfinite(e_along)) translation_.push(e_along * e_along / var_along);
   }

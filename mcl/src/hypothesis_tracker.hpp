@@ -10,6 +10,7 @@
 //    the switch rules asks the set to seed there.
 // The tracker only proposes; the Localizer draws the particles and scores them.
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -40,6 +41,15 @@ struct HypothesisStep {
   std::size_t competitors = 0;
   double alternative_evidence = 0.0;  ///< largest competitor evidence, tempered nats (>= 0)
 };
+
+/// Whether another of `hypotheses` fits this scan better than `h` by more than `margin`
+/// (`last`: each one's evidence from this scan alone, tempered nats).
+template <class Hypothesis>
+[[nodiscard]] bool outscored_on_this_scan(std::span<const Hypothesis> hypotheses,
+                                          const Hypothesis& h, double margin) noexcept {
+  return std::any_of(hypotheses.begin(), hypotheses.end(),
+                     [&](const Hypothesis& o) { return &o != &h && o.last > h.last + margin; });
+}
 
 class HypothesisTracker {
  public:

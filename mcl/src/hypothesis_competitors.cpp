@@ -227,11 +227,14 @@ bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, doubl
       moved <=
       std::max(kGlitchReach, std::sin(std::min(heading_window_, 0.5 * std::numbers::pi)) * step);
   const double turned = std::abs(wrap_angle(c.pose.theta - ref.pose.theta));
-  // Confirmed, within a glitch's reach: its readings cross almost no wall, clearly fewer
-  // than the prediction's, and more of them fit. Where clutter keeps every fit low, that
-  // is what tells a glitch apart.
-  const bool confirmed = cfg_.free_space && nearby && crossing <= margin &&
-                         crossing + margin <= blocked && c.fit >= fit + kConfirmGain;
+  // Confirmed by the free space: its readings cross clearly fewer walls than the
+  // prediction's, and more of them fit. Within a glitch's reach they must cross almost
+  // none; farther (a slip), on a second scan, at most half as many as the prediction's.
+  // Where clutter keeps every fit low, the true pose's too, that is what tells it apart.
+  const bool fewer_walls = crossing + margin <= blocked && c.fit >= fit + kConfirmGain;
+  const bool confirmed =
+      cfg_.free_space && fewer_walls &&
+      ((nearby && crossing <= margin) || (c.age >= 1 && 2 * crossing <= blocked));
   const bool abrupt = c.abrupt || confirmed;
   // The others must explain the scan as the map usually does here: with some slack when
   // they were found as the prediction's fit fell at once, fully when it faded (clutter,

@@ -41,6 +41,10 @@ struct Recovery {
   std::size_t updates_to_recover = 1000;  // steps after the glitch until back within bounds
   double max_after = 0.0;                 // metres, from the recovery on
   double max_before = 0.0;                // metres, before the glitch
+  // As the robustness benchmark scores it: steps after the glitch until first back within
+  // 0.25 m, and the largest error from then on (clutter may add brief excursions later).
+  std::size_t updates_to_first_return = 1000;
+  double max_after_return = 0.0;
 };
 
 // How many updates after the glitch the error stays above 0.2 m, and the errors around it.
@@ -53,6 +57,13 @@ Recovery recovery_of(const std::vector<double>& err_xy, std::size_t at) {
     r.updates_to_recover = k - at;
     for (std::size_t i = k; i < err_xy.size(); ++i) r.max_after = std::max(r.max_after, err_xy[i]);
   }
+  for (std::size_t i = at; i < err_xy.size(); ++i)
+    if (err_xy[i] < 0.25) {
+      r.updates_to_first_return = i - at;
+      for (std::size_t j = i; j < err_xy.size(); ++j)
+        r.max_after_return = std::max(r.max_after_return, err_xy[j]);
+      break;
+    }
   return r;
 }
 
@@ -85,8 +96,8 @@ Recovery run_glitched(const Glitched& g, bool hypotheses, std::uint64_t seed) {
 }
 
 // The same loop in a crowd the map does not show: eight 40 cm "people" stand 0.9-1.7 m
-// around the robot wherever it is, and hide most of the walls.
-Recovery run_crowded(const Glitched& g, std::uint64_t seed) {
+// around the robot wherever it is from step `crowd_from` on, and hide most of the walls.
+Recovery run_crowded(const Glitched& g, std::uint64_t seed, std::size_t crowd_from = 0) {
   const test::World map_world = test::make_room(0.05);
   Localizer loc(map_world.grid, loop_config(seed, true));
   start_tight(loc, g.truth[0]);
@@ -97,7 +108,7 @@ Recovery run_crowded(const Glitched& g, std::uint64_t seed) {
   for (std::size_t k = 0; k < g.truth.size(); ++k) {
     test::World scene = map_world;
     const Pose2& p = g.truth[k];
-    for (int i = 0; i < 8; ++i) {
+    for (int i = 0; i < (k >= crowd_from ? 8 : 0); ++i) {
       const double a = p.theta + 2.0 * std::numbers::pi * (i + 0.3 * crowd.uniform()) / 8.0;
       const double d = 0.9 + 0.8 * crowd.uniform();
       const double x = p.x + d * std::cos(a), y = p.y + d * std::sin(a);
@@ -136,6 +147,22 @@ TEST(Hypotheses, TwoMetreSlipIsAbsorbedWithinTenUpdates) {
     EXPECT_LE(on.updates_to_recover, 10u);
     EXPECT_LT(on.max_after, 0.2);
     EXPECT_GT(off.updates_to_recover, 10u);
+  }
+}
+
+// A crowd that gathers after a long clear stretch keeps every pose's fit below what the map
+// usually gives, the corrected one's too, so after a slip only the free space tells it
+// apart: its readings cross far fewer walls than the prediction's (seen without that
+// confirmation for slips: seed 1 never back, the others after 3-8 updates).
+TEST(Hypotheses, TwoMetreSlipAmidACrowdIsAbsorbedWithinTenUpdates) {
+  for (const std::uint64_t seed : {1, 2, 3, 4, 5, 6}) {
+    const Recovery r = run_crowded(glitched_path(40, {1.4, -1.4, 0.0}, seed), seed, 36);
+    std::printf("  seed %llu: back after %zu updates, max error before %.3f m, after %.3f m\n",
+                static_cast<unsigned long long>(seed), r.updates_to_first_return, r.max_before,
+                r.max_after_return);
+    EXPECT_LT(r.max_before, 0.2);
+    EXPECT_LE(r.updates_to_first_return, 10u);
+    EXPECT_LT(r.max_after_return, 1.0);
   }
 }
 

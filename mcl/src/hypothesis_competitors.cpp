@@ -272,15 +272,15 @@ void HypothesisTracker::maybe_switch(const Scored& ref, double fit, std::size_t 
                                      double step, bool lost, std::size_t particles,
                                      HypothesisStep& out) {
   // competitors_ is sorted by evidence: the first that may switch is the strongest. Not if
-  // another place fits this very scan clearly better: a fresh rescue candidate that may not
-  // switch yet, found where a noisy odometry step left the prediction behind, would
-  // otherwise let a weaker, older one take the set (one scan's evidence against that
-  // prediction is large for every place near the truth).
+  // a place no farther from the prediction fits this very scan clearly better: a fresh
+  // rescue candidate that may not switch yet, found where a noisy odometry step left the
+  // prediction behind, would otherwise let a weaker, older one farther off take the set
+  // (one scan's evidence against that prediction is large for every place near the truth).
   const std::span<const Competitor> all(competitors_);
   const auto winner =
       std::find_if(competitors_.begin(), competitors_.end(), [&](const Competitor& c) {
         return may_switch(c, ref, fit, blocked, step, lost) &&
-               !outscored_on_this_scan(all, c, cfg_.switch_evidence);
+               !outscored_on_this_scan(all, c, ref.pose, cfg_.switch_evidence);
       });
   if (winner == competitors_.end()) return;
   out.seed = {{winner->pose},

@@ -11,6 +11,7 @@
 // The tracker only proposes; the Localizer draws the particles and scores them.
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -42,13 +43,20 @@ struct HypothesisStep {
   double alternative_evidence = 0.0;  ///< largest competitor evidence, tempered nats (>= 0)
 };
 
-/// Whether another of `hypotheses` fits this scan better than `h` by more than `margin`
-/// (`last`: each one's evidence from this scan alone, tempered nats).
+/// Whether another of `hypotheses`, no farther from `prediction` than `h`, fits this scan
+/// better than `h` by more than `margin` (`last`: each one's evidence from this scan alone,
+/// tempered nats). A farther one may fit better and still be the less likely place: the
+/// farther a correction, the rarer the odometry error it needs.
 template <class Hypothesis>
 [[nodiscard]] bool outscored_on_this_scan(std::span<const Hypothesis> hypotheses,
-                                          const Hypothesis& h, double margin) noexcept {
-  return std::any_of(hypotheses.begin(), hypotheses.end(),
-                     [&](const Hypothesis& o) { return &o != &h && o.last > h.last + margin; });
+                                          const Hypothesis& h, const Pose2& prediction,
+                                          double margin) noexcept {
+  const auto distance = [&](const Hypothesis& k) {
+    return std::hypot(k.pose.x - prediction.x, k.pose.y - prediction.y);
+  };
+  return std::any_of(hypotheses.begin(), hypotheses.end(), [&](const Hypothesis& o) {
+    return &o != &h && o.last > h.last + margin && distance(o) <= distance(h);
+  });
 }
 
 class HypothesisTracker {

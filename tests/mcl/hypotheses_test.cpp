@@ -236,23 +236,38 @@ TEST(Hypotheses, AWrongPlaceIsNotReportedConvergedForLong) {
   }
 }
 
-// A switch goes to no place that another fits this scan clearly better (maybe_switch). Seen
-// on intel with odometry noisier than the model: during a turn in place three rescue
-// candidates beat a prediction left 18 deg behind by 52-71 nats; the one 2.4 m off, older and
-// so allowed to switch, took the set, while the true pose (71 nats) was one scan too young.
+// A switch goes to no place that another, no farther from the prediction, fits this scan
+// clearly better (maybe_switch). Seen on intel with odometry noisier than the model: during
+// a turn in place three rescue candidates beat a prediction left 18 deg behind by 52-71
+// nats; the one 2.4 m off, older and so allowed to switch, took the set, while the true pose
+// 0.2 m off (71 nats) was one scan too young. On aces the reverse: a 30 deg glitch's true
+// pose 1 m off (109 nats) must still win over an alias 2 m along the corridor (135 nats).
 TEST(Hypotheses, ASwitchDoesNotGoWhereAnotherPlaceFitsThisScanBetter) {
   struct Candidate {
+    Pose2 pose;   // map-local
     double last;  // this scan's evidence, tempered nats
   };
-  const std::vector<Candidate> c{{71.3}, {56.6}, {51.6}};
-  const std::span<const Candidate> all(c);
   constexpr double kMargin = HypothesesConfig{}.switch_evidence;  // 8 nats
-  EXPECT_FALSE(detail::outscored_on_this_scan(all, c[0], kMargin));
-  EXPECT_TRUE(detail::outscored_on_this_scan(all, c[1], kMargin));  // 14.7 nats behind
-  EXPECT_TRUE(detail::outscored_on_this_scan(all, c[2], kMargin));
+  const Pose2 prediction{19.66, 4.62, -45.8 * kDeg};
+  const std::vector<Candidate> intel{{{19.80, 4.65, -27.8 * kDeg}, 71.3},
+                                     {{22.26, 4.74, -28.8 * kDeg}, 56.6},
+                                     {{17.30, 4.60, -33.3 * kDeg}, 51.6}};
+  const std::span<const Candidate> all(intel);
+  EXPECT_FALSE(detail::outscored_on_this_scan(all, intel[0], prediction, kMargin));
+  EXPECT_TRUE(detail::outscored_on_this_scan(all, intel[1], prediction, kMargin));
+  EXPECT_TRUE(detail::outscored_on_this_scan(all, intel[2], prediction, kMargin));
+  // The alias is farther off than the true pose: its better fit does not hold the glitch
+  // correction back, and the true pose outscores the alias by nothing.
+  const Pose2 glitched{6.75, 35.09, 116.8 * kDeg};
+  const std::vector<Candidate> aces{{{7.80, 37.10, 86.0 * kDeg}, 135.1},
+                                    {{7.75, 35.14, 86.2 * kDeg}, 109.4}};
+  const std::span<const Candidate> both(aces);
+  EXPECT_FALSE(detail::outscored_on_this_scan(both, aces[1], glitched, kMargin));
+  EXPECT_FALSE(detail::outscored_on_this_scan(both, aces[0], glitched, kMargin));
   // Within the margin, places are about even and the older one may still switch.
-  const std::vector<Candidate> even{{60.0}, {53.0}};
-  EXPECT_FALSE(detail::outscored_on_this_scan(std::span<const Candidate>(even), even[1], kMargin));
+  const std::vector<Candidate> even{{{1.0, 0.0, 0.0}, 60.0}, {{2.0, 0.0, 0.0}, 53.0}};
+  EXPECT_FALSE(
+      detail::outscored_on_this_scan(std::span<const Candidate>(even), even[1], Pose2{}, kMargin));
 }
 
 }  // namespace

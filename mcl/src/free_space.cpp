@@ -48,14 +48,14 @@ bool FreeSpace::is_free(double x, double y) const noexcept {
   return clearance_at(static_cast<float>(x / resolution_), static_cast<float>(y / resolution_)) > 0;
 }
 
-std::size_t FreeSpace::blocked_beams(const Pose2& pose, const PreparedBeams& beams, float sensor_x,
-                                     float sensor_y) const noexcept {
+template <class OnBlocked>
+void FreeSpace::for_each_blocked(const Pose2& pose, const PreparedBeams& beams, float sensor_x,
+                                 float sensor_y, OnBlocked&& on_blocked) const {
   const auto c = static_cast<float>(std::cos(pose.theta));
   const auto s = static_cast<float>(std::sin(pose.theta));
   const auto px = static_cast<float>(pose.x / resolution_);
   const auto py = static_cast<float>(pose.y / resolution_);
   const float sx = px + c * sensor_x - s * sensor_y, sy = py + s * sensor_x + c * sensor_y;
-  std::size_t blocked = 0;
   for (std::size_t j = 0; j < beams.size(); ++j) {
     const float ex = px + c * beams.ex[j] - s * beams.ey[j];
     const float ey = py + s * beams.ex[j] + c * beams.ey[j];
@@ -68,7 +68,7 @@ std::size_t FreeSpace::blocked_beams(const Pose2& pose, const PreparedBeams& bea
       const float x = sx + ux * t, y = sy + uy * t;
       const std::uint8_t k = clearance_at(x, y);
       if (k == 0) {
-        ++blocked;
+        on_blocked(j);
         break;
       }
       // Sphere tracing: from a cell whose centre lies k cells from every blocked cell's
@@ -79,7 +79,20 @@ std::size_t FreeSpace::blocked_beams(const Pose2& pose, const PreparedBeams& bea
                                                        : to_next_cell(y, uy) + kNudge;
     }
   }
+}
+
+std::size_t FreeSpace::blocked_beams(const Pose2& pose, const PreparedBeams& beams, float sensor_x,
+                                     float sensor_y) const noexcept {
+  std::size_t blocked = 0;
+  for_each_blocked(pose, beams, sensor_x, sensor_y, [&](std::size_t) { ++blocked; });
   return blocked;
+}
+
+void FreeSpace::blocked_beam_indices(const Pose2& pose, const PreparedBeams& beams, float sensor_x,
+                                     float sensor_y, std::vector<std::uint32_t>& out) const {
+  out.clear();
+  for_each_blocked(pose, beams, sensor_x, sensor_y,
+                   [&](std::size_t j) { out.push_back(static_cast<std::uint32_t>(j)); });
 }
 
 }  // namespace pgmcl::detail

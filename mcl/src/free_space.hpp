@@ -30,10 +30,17 @@ class FreeSpace {
   /// robot at `pose` (map-local metres).
   [[nodiscard]] std::size_t blocked_beams(const Pose2& pose, const PreparedBeams& beams,
                                           float sensor_x, float sensor_y) const noexcept;
+  /// The same beams' indices into `beams`, into `out` (cleared first).
+  void blocked_beam_indices(const Pose2& pose, const PreparedBeams& beams, float sensor_x,
+                            float sensor_y, std::vector<std::uint32_t>& out) const;
   [[nodiscard]] std::size_t bytes() const noexcept { return clearance_.size(); }
 
  private:
   [[nodiscard]] std::uint8_t clearance_at(float col, float row) const noexcept;
+  /// Calls `on_blocked(j)` for each blocked beam j, in order.
+  template <class OnBlocked>
+  void for_each_blocked(const Pose2& pose, const PreparedBeams& beams, float sensor_x,
+                        float sensor_y, OnBlocked&& on_blocked) const;
 
   int width_ = 0, height_ = 0;
   double resolution_ = 0.0;

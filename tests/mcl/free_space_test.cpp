@@ -1,7 +1,7 @@
 // FreeSpace (mcl/src/free_space.hpp): the rays of a scan that cross cells the map does not
-// show as free. Sphere tracing over the clearance grid must count exactly what a fine walk
-// along every ray counts, and a scan seen from the right pose crosses no wall while the same
-// scan from a pose beyond a wall crosses many.
+// show as free. Sphere tracing over the clearance grid must count (and name) exactly what a
+// fine walk along every ray counts, and a scan seen from the right pose crosses no wall while the
+// same scan from a pose beyond a wall crosses many.
 #include "free_space.hpp"
 
 #include <gtest/gtest.h>
@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <numbers>
 #include <utility>
+#include <vector>
 
 #include "pgmcl/common/random.hpp"
 #include "pgmcl/mcl/localizer.hpp"
@@ -98,6 +99,17 @@ TEST(FreeSpace, SphereTracingCountsWhatAnExactSegmentTestCounts) {
     }
     const std::size_t want = walked(world.grid, pose, b, 4.0f, 0.0f);
     EXPECT_EQ(fs.blocked_beams(pose, b, 4.0f, 0.0f), want) << "trial " << trial;
+    // The same beams by index: each one alone is blocked by the oracle.
+    std::vector<std::uint32_t> which;
+    fs.blocked_beam_indices(pose, b, 4.0f, 0.0f, which);
+    EXPECT_EQ(which.size(), want) << "trial " << trial;
+    for (const std::uint32_t j : which) {
+      PreparedBeams one;
+      one.ex = {b.ex[j]};
+      one.ey = {b.ey[j]};
+      EXPECT_EQ(walked(world.grid, pose, one, 4.0f, 0.0f), 1u)
+          << "trial " << trial << " beam " << j;
+    }
     total += want;
   }
   EXPECT_GT(total, 200u);  // the random rays do cross walls

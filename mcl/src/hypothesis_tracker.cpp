@@ -134,6 +134,12 @@ std::size_t HypothesisTracker::blocked_beams(const Pose2& pose) const noexcept {
   return free_.blocked_beams(pose, *beams_, sensor_x_, sensor_y_);
 }
 
+void HypothesisTracker::blocked_beam_indices(const Pose2& pose, const PreparedBeams& beams,
+                                             std::vector<std::uint32_t>& out) const {
+  out.clear();
+  if (cfg_.free_space) free_.blocked_beam_indices(pose, beams, sensor_x_, sensor_y_, out);
+}
+
 bool HypothesisTracker::contradicted(const Pose2& pose, std::size_t ref_blocked) const noexcept {
   // At a right pose a reading crosses a wall only where the map is wrong or the ray grazes
   // a corner; at a wrong one that fits by chance (clutter, people, furniture missing from

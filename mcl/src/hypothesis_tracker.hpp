@@ -39,6 +39,7 @@ struct HypothesisStep {
   SeedRequest seed;
   bool searched = false;  ///< a global or rescue search ran
   bool switched = false;  ///< the seeds are a competitor that outweighed the prediction
+  bool misfit = false;    ///< tracking: the scan stopped fitting the prediction (rescue search)
   std::size_t competitors = 0;
   double alternative_evidence = 0.0;  ///< largest competitor evidence, tempered nats (>= 0)
 };
@@ -98,6 +99,10 @@ class HypothesisTracker {
   /// Beams of this update's scan whose ray, from the sensor to near its endpoint, crosses
   /// a cell that is not free at `pose` (map-local).
   [[nodiscard]] std::size_t blocked_beams(const Pose2& pose) const noexcept;
+  /// The beams of `beams` (prepared from this update's scan) that blocked_beams() would
+  /// count, as indices into `beams`, into `out`.
+  void blocked_beam_indices(const Pose2& pose, const PreparedBeams& beams,
+                            std::vector<std::uint32_t>& out) const;
   // Free-space evidence counts from a tenth of the beams on: grazing rays along corridor
   // walls cross them at right poses too, after a fraction of a degree of heading error.
   static constexpr std::size_t kBlockedMargin = 10;

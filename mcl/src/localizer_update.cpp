@@ -183,6 +183,7 @@ bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, Up
 
   model_.prepare(scan, ws_.selected_beams);
   const Pose2 prediction = origin_.between(anchor_).compose(delta);  // map-local
+  bool misfit = false;
   if (hypotheses_) {
     // Competing hypotheses may redraw some particles before the scan scores them all.
     const auto th = Clock::now();
@@ -197,6 +198,7 @@ bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, Up
     r.searched = h.searched;
     r.competitors = h.competitors;
     r.alternative_evidence = h.alternative_evidence;
+    misfit = h.misfit && cfg_.hypotheses.free_space_weights;
     r.timings.hypotheses_ms = ms_since(th);
   }
   const std::size_t n = p_.size();
@@ -237,6 +239,7 @@ bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, Up
           : detail::limit_tempering(p_.log_w, ws_.scan_ll, tau_cfg, lc.min_ess_ratio);
   r.tempering = tau;
   for (std::size_t i = 0; i < n; ++i) p_.log_w[i] += tau * ws_.scan_ll[i];
+  if (misfit) discount_blocked_readings(tau);
   (void)normalise_log_weights(p_.log_w, p_.w);
   limit_probation_weight(prediction);
   r.n_eff = effective_sample_size(p_.w);

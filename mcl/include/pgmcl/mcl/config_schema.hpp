@@ -311,6 +311,9 @@ void describe_hypotheses(V& v, Config& c) {
     v.number(Field{"separation_theta", "rad", "closer headings are the same place"},
              h.separation_theta, kPositive);
     v.flag(Field{"free_space", "", "judge hypotheses also by rays that cross walls"}, h.free_space);
+    v.flag(
+        Field{"free_space_weights", "", "while misfit, leading particles lose wall-crossing beams"},
+        h.free_space_weights);
   });
 }
 

@@ -104,6 +104,9 @@ class Localizer {
   void seed_particles(const detail::SeedRequest& seed);
   void update_recovery_averages(double w_avg, UpdateResult& r) noexcept;
   void limit_probation_weight(const Pose2& prediction);  // map-local
+  /// Lowers the weight of the particles that lead this update by the readings that crossed
+  /// walls to reach them (`tau`: this update's scan exponent).
+  void discount_blocked_readings(double tau);
   void resample(UpdateResult& r);
   [[nodiscard]] std::size_t kld_sample_count(Rng& rng, double p_inject, Rng& inject_rng);
   /// `withheld_tau`: the part of this update's scan exponent the tempering limit held back
@@ -136,6 +139,8 @@ class Localizer {
     std::vector<double> log_w_probation, log_w_tracked;  // limit_probation_weight()
     std::vector<std::uint32_t> seed_victims;             // seed_particles()
     std::vector<double> estimate_w;                      // compute_estimate(): untempered
+    std::vector<std::uint32_t> by_weight, blocked;       // discount_blocked_readings()
+    PreparedBeams blocked_beams;                         // ... one particle's blocked beams
   };
 
   ParticleSet p_;

@@ -1,0 +1,91 @@
+// Localizer::discount_blocked_readings(): the free space's say in the particles' weights
+// while the scan does not fit the prediction.
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <span>
+
+#include "hypothesis_tracker.hpp"
+#include "pgmcl/maps/table_kernels.hpp"
+#include "pgmcl/mcl/localizer.hpp"
+
+namespace pgmcl {
+namespace {
+
+// Particles checked at most per update, heaviest first: each costs a ray per beam, some
+// twenty lookups each.
+constexpr std::size_t kMaxChecked = 64;
+// Tempered nats: a particle this far below the best discounted one no longer matters.
+constexpr double kNegligible = 20.0;
+
+// `from`'s beams `indices`, into `to`.
+void gather(const PreparedBeams& from, std::span<const std::uint32_t> indices, PreparedBeams& to) {
+  to.ex.clear();
+  to.ey.clear();
+  to.ux.clear();
+  to.uy.clear();
+  to.bin.clear();
+  for (const std::uint32_t j : indices) {
+    to.ex.push_back(from.ex[j]);
+    to.ey.push_back(from.ey[j]);
+    to.ux.push_back(from.ux[j]);
+    to.uy.push_back(from.uy[j]);
+    to.bin.push_back(from.bin[j]);
+  }
+  to.reach = from.reach;  // a bound for any subset
+}
+
+}  // namespace
+
+void Localizer::discount_blocked_readings(double tau) {
+  // The endpoint tables credit a reading that lands near a wall however it got there. Where
+  // people or clutter hide most of the walls, a pose turned or shifted so that their
+  // readings land on walls outscores the true one, though its rays pass through walls to
+  // get there. Such a reading is no hit at that pose: it counts as background, the model's
+  // value for a reading the map does not explain.
+  // Only the tracked particles are checked: those on probation (random poses) hold a
+  // bounded share anyway (limit_probation_weight()) and would use up the budget.
+  std::vector<std::uint32_t>& order = ws_.by_weight;
+  order.clear();
+  for (std::size_t i = 0; i < p_.size(); ++i)
+    if (probation_[i] == 0) order.push_back(static_cast<std::uint32_t>(i));
+  const std::size_t n = order.size();
+  const std::size_t checked = std::min(n, kMaxChecked);
+  const PreparedBeams& all = model_.beams();
+  if (checked == 0 || all.size() == 0 || !(tau > 0.0)) return;
+  const auto heavier = [&](std::uint32_t a, std::uint32_t b) {
+    return p_.log_w[a] > p_.log_w[b] || (p_.log_w[a] == p_.log_w[b] && a < b);
+  };
+  std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(checked),
+                    order.end(), heavier);
+
+  const sensor_model::BeamLikelihood& model = field_->model();
+  const double nats_per_q = tau * model.nats_per_step();
+  double best = -std::numeric_limits<double>::infinity();
+  double least = std::numeric_limits<double>::infinity();  // smallest discount applied
+  std::size_t k = 0;
+  for (; k < checked; ++k) {
+    const std::uint32_t i = order[k];
+    if (p_.log_w[i] < best - kNegligible) break;
+    hypotheses_->blocked_beam_indices({p_.x[i], p_.y[i], p_.theta[i]}, all, ws_.blocked);
+    double discount = 0.0;
+    if (!ws_.blocked.empty()) {
+      gather(all, ws_.blocked, ws_.blocked_beams);
+      std::uint32_t credited = 0;  // the blocked readings' sum as the tables score them
+      maps::with_kernel(*field_, ws_.blocked_beams.arrays(), 0, [&](const auto& kernel) {
+        credited = maps::score_pose<false>(kernel, p_.x[i], p_.y[i], p_.theta[i], nullptr);
+      });
+      const double background = static_cast<double>(ws_.blocked.size()) * model.background();
+      discount = nats_per_q * (background - static_cast<double>(credited));
+    }
+    p_.log_w[i] -= discount;
+    least = std::min(least, discount);
+    best = std::max(best, p_.log_w[i]);
+  }
+  // Out of budget: the unchecked particles are discounted as the least discounted checked
+  // one, so that not checking a particle never favours it.
+  if (k == checked)
+    for (std::size_t u = checked; u < n; ++u) p_.log_w[order[u]] -= least;
+}
+
+}  // namespace pgmcl

@@ -62,9 +62,9 @@ void Localizer::discount_blocked_readings(double tau) {
   const sensor_model::BeamLikelihood& model = field_->model();
   const double nats_per_q = tau * model.nats_per_step();
   double best = -std::numeric_limits<double>::infinity();
-  double least = std::numeric_limits<double>::infinity();  // smallest discount applied
-  std::size_t k = 0;
-  for (; k < checked; ++k) {
+  double least = std::numeric_limits<double>::infinity();  // smallest discount found
+  ws_.discounts.clear();
+  for (std::size_t k = 0; k < checked; ++k) {
     const std::uint32_t i = order[k];
     if (p_.log_w[i] < best - kNegligible) break;
     hypotheses_->blocked_beam_indices({p_.x[i], p_.y[i], p_.theta[i]}, all, ws_.blocked);
@@ -78,14 +78,15 @@ void Localizer::discount_blocked_readings(double tau) {
       const double background = static_cast<double>(ws_.blocked.size()) * model.background();
       discount = nats_per_q * (background - static_cast<double>(credited));
     }
-    p_.log_w[i] -= discount;
+    ws_.discounts.push_back(discount);
     least = std::min(least, discount);
-    best = std::max(best, p_.log_w[i]);
+    best = std::max(best, p_.log_w[i] - discount);
   }
-  // Out of budget: the unchecked particles are discounted as the least discounted checked
-  // one, so that not checking a particle never favours it.
-  if (k == checked)
-    for (std::size_t u = checked; u < n; ++u) p_.log_w[order[u]] -= least;
+  // Every particle not checked (the lighter ones, and those on probation) is taken to lose
+  // the least any checked one lost, so that not checking never favours a particle; as a
+  // shift common to all it drops out in normalisation, which leaves the checked ones' excess.
+  for (std::size_t k = 0; k < ws_.discounts.size(); ++k)
+    p_.log_w[order[k]] -= ws_.discounts[k] - least;
 }
 
 }  // namespace pgmcl

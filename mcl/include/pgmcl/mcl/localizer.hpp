@@ -141,6 +141,7 @@ class Localizer {
     std::vector<double> estimate_w;                      // compute_estimate(): untempered
     std::vector<std::uint32_t> by_weight, blocked;       // discount_blocked_readings()
     PreparedBeams blocked_beams;                         // ... one particle's blocked beams
+    std::vector<double> discounts;                       // ... per checked particle, nats
   };
 
   ParticleSet p_;

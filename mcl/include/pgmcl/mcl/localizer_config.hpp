@@ -170,9 +170,10 @@ struct HypothesesConfig {
   /// contradicts a pose): it vetoes and confirms switches, starts a search when the tracked
   /// pose's rays start crossing walls, and rules out contradicted places in global search.
   bool free_space = true;
-  /// With free_space, while the scan does not fit the prediction (a rescue search runs),
-  /// the particles that carry the weight lose the credit of readings that crossed walls to
-  /// reach their endpoints: people hiding the walls otherwise let a turned particle win.
+  /// With free_space, while the scan does not fit the prediction of a converged set (a
+  /// rescue search runs, no competitor wins), the particles that carry the weight lose the
+  /// credit of readings that crossed walls to reach their endpoints: people hiding the
+  /// walls otherwise let a turned particle win.
   bool free_space_weights = true;
 };
 

@@ -128,7 +128,7 @@ void HypothesisTracker::rescue(const Scored& ref, int widen, bool abrupt, Hypoth
   q.max_cost = search_.pooled_cost(ref.pose.x, ref.pose.y, ref.pose.theta);
   q.budget = cfg_.rescue_budget;
   q.coarse_levels = 1;
-  out.searched = out.misfit = true;
+  out.searched = true;
   refined_.clear();
   for (const PoseCandidate& c : search_.search(q).candidates) refined_.push_back(refine(c));
   // Best first; a stable insertion sort of a handful (ties keep the coarse order).

@@ -39,7 +39,6 @@ struct HypothesisStep {
   SeedRequest seed;
   bool searched = false;  ///< a global or rescue search ran
   bool switched = false;  ///< the seeds are a competitor that outweighed the prediction
-  bool misfit = false;    ///< tracking: the scan stopped fitting the prediction (rescue search)
   std::size_t competitors = 0;
   double alternative_evidence = 0.0;  ///< largest competitor evidence, tempered nats (>= 0)
 };

@@ -183,7 +183,7 @@ bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, Up
 
   model_.prepare(scan, ws_.selected_beams);
   const Pose2 prediction = origin_.between(anchor_).compose(delta);  // map-local
-  bool misfit = false;
+  bool judge_free_space = false;
   if (hypotheses_) {
     // Competing hypotheses may redraw some particles before the scan scores them all.
     const auto th = Clock::now();
@@ -198,10 +198,14 @@ bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, Up
     r.searched = h.searched;
     r.competitors = h.competitors;
     r.alternative_evidence = h.alternative_evidence;
-    // Not on the update a competitor wins: the switch has weighed the free space already,
-    // and judging the redrawn set again delayed a slip's absorption amid a crowd (the unit
-    // test's seed 4: 4 -> 12 updates).
-    misfit = h.misfit && !h.switched && cfg_.hypotheses.free_space_weights;
+    // The particles are judged by the free space while tracking a set that was one compact
+    // cluster (clustered_) when the scan stopped fitting it (a rescue search ran). Not for a
+    // spread cloud: one spread by a 100 m odometry spike found its way back without it and
+    // not with it. Not on the update a competitor wins: the switch has weighed the free
+    // space already, and judging the redrawn set again delayed a slip's absorption amid a
+    // crowd (the unit test's seed 4: 4 -> 12 updates).
+    judge_free_space = cfg_.hypotheses.free_space_weights && clustered_ && h.searched &&
+                       !hypotheses_->global() && !h.switched;
     r.timings.hypotheses_ms = ms_since(th);
   }
   const std::size_t n = p_.size();
@@ -242,9 +246,7 @@ bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, Up
           : detail::limit_tempering(p_.log_w, ws_.scan_ll, tau_cfg, lc.min_ess_ratio);
   r.tempering = tau;
   for (std::size_t i = 0; i < n; ++i) p_.log_w[i] += tau * ws_.scan_ll[i];
-  // Only a set that was one compact cluster (clustered_) is judged: a cloud spread by a
-  // 100 m odometry spike found its way back without it and not with it.
-  if (misfit && clustered_) discount_blocked_readings(tau);
+  if (judge_free_space) discount_blocked_readings(tau);
   (void)normalise_log_weights(p_.log_w, p_.w);
   limit_probation_weight(prediction);
   r.n_eff = effective_sample_size(p_.w);

@@ -136,8 +136,10 @@ std::size_t HypothesisTracker::blocked_beams(const Pose2& pose) const noexcept {
 
 void HypothesisTracker::blocked_beam_indices(const Pose2& pose, const PreparedBeams& beams,
                                              std::vector<std::uint32_t>& out) const {
-  out.clear();
-  if (cfg_.free_space) free_.blocked_beam_indices(pose, beams, sensor_x_, sensor_y_, out);
+  if (cfg_.free_space)
+    free_.blocked_beam_indices(pose, beams, sensor_x_, sensor_y_, out);
+  else
+    out.clear();
 }
 
 bool HypothesisTracker::contradicted(const Pose2& pose, std::size_t ref_blocked) const noexcept {

@@ -204,8 +204,8 @@ bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, Up
     // not with it. Not on the update a competitor wins: the switch has weighed the free
     // space already, and judging the redrawn set again delayed a slip's absorption amid a
     // crowd (the unit test's seed 4: 4 -> 12 updates).
-    judge_free_space = cfg_.hypotheses.free_space_weights && clustered_ && h.searched &&
-                       !hypotheses_->global() && !h.switched;
+    judge_free_space = cfg_.hypotheses.free_space && cfg_.hypotheses.free_space_weights &&
+                       clustered_ && h.searched && !hypotheses_->global() && !h.switched;
     r.timings.hypotheses_ms = ms_since(th);
   }
   const std::size_t n = p_.size();

@@ -268,6 +268,15 @@ bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, doubl
   return c.fit >= fit + (abrupt ? 0.5 : 1.0) * kGlitchGain;
 }
 
+bool HypothesisTracker::overshadowed(const Competitor& c) const {
+  // competitors_ is sorted by evidence: those before c are stronger.
+  const auto stronger = competitors_.begin() + (&c - competitors_.data());
+  return std::any_of(competitors_.begin(), stronger, [&](const Competitor& d) {
+    return d.age >= 1 && d.fit >= c.fit + kConfirmGain &&
+           blocked_beams(d.pose) <= blocked_beams(c.pose);
+  });
+}
+
 void HypothesisTracker::maybe_switch(const Scored& ref, double fit, std::size_t blocked,
                                      double step, bool lost, std::size_t particles,
                                      HypothesisStep& out) {
@@ -280,7 +289,8 @@ void HypothesisTracker::maybe_switch(const Scored& ref, double fit, std::size_t 
   const auto winner =
       std::find_if(competitors_.begin(), competitors_.end(), [&](const Competitor& c) {
         return may_switch(c, ref, fit, blocked, step, lost) &&
-               !outscored_on_this_scan(all, c, ref.pose, cfg_.switch_evidence);
+               !outscored_on_this_scan(all, c, ref.pose, cfg_.switch_evidence) &&
+               !overshadowed(c);
       });
   if (winner == competitors_.end()) return;
   out.seed = {{winner->pose},

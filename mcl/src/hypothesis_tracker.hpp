@@ -138,6 +138,10 @@ class HypothesisTracker {
   /// `pose` lies within this update's rescue window around `ref`.
   [[nodiscard]] bool in_rescue_window(const Pose2& pose, const Pose2& ref) const noexcept;
   void sweep(const Scored& ref, std::size_t particles, bool lost);
+  /// A stronger competitor (more evidence, tracked over a scan) fits this scan clearly
+  /// better than `c` and its readings cross no more walls: `c` must not take the set, or
+  /// the filter may settle where it fits too well to count as lost.
+  [[nodiscard]] bool overshadowed(const Competitor& c) const;
   void prune(const Scored& ref);
   /// `blocked`: blocked_beams() at the prediction.
   void maybe_switch(const Scored& ref, double fit, std::size_t blocked, double step, bool lost,

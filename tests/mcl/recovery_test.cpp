@@ -2,9 +2,11 @@
 // MCL, Probabilistic Robotics Table 8.3).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <string>
 
 #include "closed_loop.hpp"
 #include "pgmcl/mcl/localizer.hpp"
@@ -54,23 +56,14 @@ TEST_P(GlobalLocalisation, ConvergesFromAnywhere) {
 INSTANTIATE_TEST_SUITE_P(Starts, GlobalLocalisation, ::testing::Values(0, 60, 110, 170));
 
 // The robot is carried to another place without odometry noticing; the filter, confident
-// at the old place, must notice (w_fast drops below w_slow), inject random particles and
-// re-converge on the new place.
+// at the old place, must notice (w_fast drops below w_slow, the scan stops fitting) and
+// re-converge on the new place, whatever its own random draws: over 25 filter seeds.
 TEST(Kidnapping, RecoversAfterBeingCarriedAway) {
   const test::World world = test::make_room(0.05);
   const auto truth = test::loop_trajectory();
   const auto odom = test::noisy_odometry(truth, MotionNoise{}, 17);
   test::ScanSpec spec;
   spec.noise_sigma = 0.01;
-  Localizer loc(world.grid, global_config());
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  cov.diagonal() << 0.01, 0.01, 0.003;
-  loc.set_pose(truth[0], cov);
-  test::LoopErrors before =
-      test::run_loop(loc, world, truth, odom, spec, {.noise_seed = 1, .end = 40});
-  ASSERT_LT(before.final_xy, 0.1);
-  ASSERT_TRUE(loc.last_result().converged);
-
   // Kidnap: truth jumps from step 40 to step 150 (several metres, other heading), while
   // odometry continues from where it was as if the robot had driven on normally.
   std::vector<Pose2> truth2(truth.begin(), truth.begin() + 40);
@@ -80,22 +73,34 @@ TEST(Kidnapping, RecoversAfterBeingCarriedAway) {
     odom2.push_back(odom2.back().compose(odom[k - 1].between(odom[k])));
   }
   ASSERT_GT(test::xy_error(truth2[39], truth2[40]), 3.0);
-  const test::LoopErrors after =
-      test::run_loop(loc, world, truth2, odom2, spec,
-                     {.noise_seed = 2, .begin = 40, .end = truth2.size(), .t0 = 100.0});
-  // Seen: back within 10 cm 77 updates after the kidnapping with probation 30, 2.8 cm at
-  // the end (60 updates with probation 15; 29 updates and 2.9 cm before injected lineages
-  // were put on probation, RecoveryConfig). Over 8
-  // filter seeds of this scenario recovery took 20-86 updates without probation (not
-  // re-measured with it), hence the wide bound.
-  std::size_t recovered_at = 0;
-  for (std::size_t k = 0; k < after.err_xy.size(); ++k)
-    if (after.err_xy[k] > 0.1) recovered_at = k + 1;
-  RecordProperty("recovered_after", std::to_string(recovered_at));
-  RecordProperty("final_xy_m", std::to_string(after.final_xy));
-  EXPECT_LT(recovered_at, 90u) << "still lost at update " << recovered_at;
-  EXPECT_LT(after.final_xy, 0.1);
-  EXPECT_LT(after.final_theta, 3 * kDeg);
+  std::size_t slowest = 0;
+  for (std::uint64_t seed = 1; seed <= 25; ++seed) {
+    LocalizerConfig cfg = global_config();
+    cfg.seed = seed;
+    Localizer loc(world.grid, cfg);
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    cov.diagonal() << 0.01, 0.01, 0.003;
+    loc.set_pose(truth[0], cov);
+    const test::LoopErrors before =
+        test::run_loop(loc, world, truth, odom, spec, {.noise_seed = 1, .end = 40});
+    ASSERT_LT(before.final_xy, 0.1) << "seed " << seed;
+    ASSERT_TRUE(loc.last_result().converged) << "seed " << seed;
+    const test::LoopErrors after =
+        test::run_loop(loc, world, truth2, odom2, spec,
+                       {.noise_seed = 2, .begin = 40, .end = truth2.size(), .t0 = 100.0});
+    std::size_t recovered_at = 0;
+    for (std::size_t k = 0; k < after.err_xy.size(); ++k)
+      if (after.err_xy[k] > 0.1) recovered_at = k + 1;
+    slowest = std::max(slowest, recovered_at);
+    // Seen: back within 10 cm 14 updates after the kidnapping on every seed, the true
+    // place (found by the map sweep) taking over as a kidnapping after ten lost scans.
+    // Before a stronger competitor blocked weaker ones, 7 of 100 seeds switched first to
+    // a place that fitted only two thirds of the beams, and stayed there 5 m off.
+    EXPECT_LT(recovered_at, 30u) << "seed " << seed << ": still lost at update " << recovered_at;
+    EXPECT_LT(after.final_xy, 0.1) << "seed " << seed;
+    EXPECT_LT(after.final_theta, 3 * kDeg) << "seed " << seed;
+  }
+  RecordProperty("slowest_recovery", std::to_string(slowest));
 }
 
 // Global localisation with sparse scans (0.5 m / 15 deg apart): while the set still holds

@@ -92,6 +92,15 @@ TEST(NodeParameters, AmclNamesMapOntoPgmclFields) {
   EXPECT_EQ(s.nav.save_pose_period, 4.0);
 }
 
+// amcl takes max_particles alone below pgmcl's lower bound (1000); so must the node.
+TEST(NodeParameters, AmclMaxParticlesAloneAlsoBoundsTheLowerBound) {
+  const LocalizerConfig c = read({{"max_particles", std::int64_t{500}}}).nav.filter;
+  EXPECT_EQ(c.filter.kld.max_particles, 500u);
+  EXPECT_EQ(c.filter.kld.min_particles, 500u);
+  const LocalizerConfig wide = read({{"max_particles", std::int64_t{5000}}}).nav.filter;
+  EXPECT_EQ(wide.filter.kld.min_particles, LocalizerConfig{}.filter.kld.min_particles);
+}
+
 TEST(NodeParameters, AmclDefaultsTurnRecoveryOffAndNotesNameDifferences) {
   const NodeSettings s = read({{"recovery_alpha_slow", 0.0},
                                {"recovery_alpha_fast", 0.0},

@@ -326,6 +326,9 @@ NodeSettings read_node_settings(const ParamLookup& get, const LocalizerConfig& b
     FilterConfig& f = s.nav.filter.filter;
     f.particles = std::min(f.particles, f.kld.max_particles);
     f.global_particles = std::min(f.global_particles, f.kld.max_particles);
+    // ... and its lower bound, when only max_particles is given and is below pgmcl's.
+    if (!amcl.contains("filter.kld.min_particles"))
+      f.kld.min_particles = std::min(f.kld.min_particles, f.kld.max_particles);
   }
   ApplyVisitor from_pgmcl([&](const std::string& dotted) -> std::optional<Source> {
     const std::string name = kPgmclPrefix + slashes(dotted);

@@ -75,7 +75,10 @@ struct LikelihoodConfig {
 /// below epsilon, given the number k of histogram bins the particles occupy.
 struct KldConfig {
   bool enabled = true;
-  std::size_t min_particles = 300;    ///< lower bound on the particle count
+  /// Lower bound on the particle count. It samples the next prediction whenever a scan
+  /// collapses the set onto a few particles, as noisy odometry does on most updates, and
+  /// KLD, binning that collapsed set, asks for no more (bench/robustness/README.md).
+  std::size_t min_particles = 1000;
   std::size_t max_particles = 20000;  ///< upper bound on the particle count
   double epsilon = 0.05;              ///< KL bound (Fox: 0.05)
   double delta = 0.01;                ///< z = normal_quantile(1 - delta) (Fox: 0.01)

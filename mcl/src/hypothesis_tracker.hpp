@@ -71,7 +71,8 @@ class HypothesisTracker {
   [[nodiscard]] bool global() const noexcept { return global_; }
   /// The filter converged: leave global mode, keeping the other places of the last global
   /// search as competitors (the filter may have settled on one that only fits almost as
-  /// well). `estimate` map-local.
+  /// well), and start the running fit from this update's scan at `estimate` (map-local).
+  /// Called after update(), on the same scan.
   void converged(const Pose2& estimate);
 
   /// One update. `selected` indexes scan.ranges; `beams` is the prepared selection;
@@ -172,7 +173,7 @@ class HypothesisTracker {
   MeasurementModel probe_;  // a few of the scan's beams, for scoring single hypotheses
   std::vector<std::uint32_t> probe_beams_;
   std::size_t beams_used_ = 0;               // beams the particles are scored on this update
-  const PreparedBeams* beams_ = nullptr;     // this update's selected beams (during update())
+  const PreparedBeams* beams_ = nullptr;     // this update's selected beams (from update() on)
   float sensor_x_ = 0.0f, sensor_y_ = 0.0f;  // the sensor in the base frame, cells
   double resolution_ = 0.0;
   double heading_window_ = 0.0;  // rescue_theta, or the odometry's heading spread if wider

@@ -118,7 +118,11 @@ UpdateResult Localizer::update(const Pose2& odometry_pose, const LaserScan& scan
   compute_estimate(r, measured ? full_tau - r.tempering : 0.0);
   if (measured) {
     count_background(r);
-    if (hypotheses_ && r.converged) hypotheses_->converged(origin_.between(r.estimate));
+    if (hypotheses_ && r.converged && hypotheses_->global()) {
+      const Pose2 local = origin_.between(r.estimate);
+      hypotheses_->converged(local);
+      hold_other_places(local);
+    }
   }
   // The filter's own dynamics (tempering limit, recovery averages) follow the cluster;
   // what it reports also doubts a cluster that another place outweighs so far.
@@ -301,6 +305,20 @@ void Localizer::limit_probation_weight(const Pose2& prediction) {
     if (probation_[i] == 0) continue;
     const float dx = p_.x[i] - px, dy = p_.y[i] - py;
     if (hold < 0.0 || dx * dx + dy * dy <= hold2) --probation_[i];
+  }
+}
+
+void Localizer::hold_other_places(const Pose2& estimate) {
+  // The global search seeded other places until this update, and its seeded particles are
+  // tracked like the rest. With odometry noisier than the model the converged cluster can
+  // misfit the next scan, and one of them then took the whole set in one update, 17-42 m
+  // off (bench/robustness/README.md). Held, they win only as the tracker's competitors do.
+  const auto hold = static_cast<float>(cfg_.hypotheses.rescue_xy);
+  const auto ex = static_cast<float>(estimate.x), ey = static_cast<float>(estimate.y);
+  const auto probation = static_cast<std::uint8_t>(cfg_.filter.recovery.probation);
+  for (std::size_t i = 0; i < p_.size(); ++i) {
+    const float dx = p_.x[i] - ex, dy = p_.y[i] - ey;
+    if (dx * dx + dy * dy > hold * hold) probation_[i] = std::max(probation_[i], probation);
   }
 }
 

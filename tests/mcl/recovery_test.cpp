@@ -103,6 +103,55 @@ TEST(Kidnapping, RecoversAfterBeingCarriedAway) {
   RecordProperty("slowest_recovery", std::to_string(slowest));
 }
 
+// A glitch or a slip on the very update after global localisation converged. The tracker's
+// running fit starts from the scan that converged, so the fall shows; and the places the
+// global search seeded are held on probation, so none of them takes the set while the
+// converged cluster misfits (on the robustness suite's noisier odometry one did, 17-42 m
+// off). Seen before, over seeds 1-40: 60 deg unabsorbed on 28, 90 deg on 34, the slip on 37.
+TEST(GlobalLocalisation, AGlitchRightAfterConvergingIsAbsorbed) {
+  const test::World world = test::make_room(0.05);
+  const auto truth = test::loop_trajectory(0.5, 15 * kDeg);
+  struct Glitch {
+    const char* name;
+    Pose2 odometry_error;
+    std::size_t allowed;  // updates more than 1 m off (issue 13: 5 for a heading glitch)
+  };
+  for (const Glitch& g : {Glitch{"60 deg", {0.0, 0.0, 60 * kDeg}, 5},
+                          Glitch{"90 deg", {0.0, 0.0, 90 * kDeg}, 5},
+                          Glitch{"2 m slip", {1.4, -1.4, 0.0}, 10}}) {
+    for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+      const auto odom = test::noisy_odometry(truth, MotionNoise{}, seed);
+      LocalizerConfig cfg = global_config();
+      cfg.threads = 1;
+      cfg.seed = seed;
+      Localizer loc(world.grid, cfg);
+      test::ScanSpec spec;
+      spec.noise_sigma = 0.01;
+      Rng noise(seed + 3);
+      std::size_t converged_at = 0, off = 0;
+      double final_xy = 0.0;
+      for (std::size_t k = 0; k < truth.size(); ++k) {
+        // From the update after the first convergence on, odometry carries the error.
+        Pose2 o = odom[k];
+        if (converged_at > 0) {
+          const Pose2& base = odom[converged_at];
+          o = base.compose(g.odometry_error).compose(base.between(odom[k]));
+        }
+        const UpdateResult r = loc.update(o, world.scan(truth[k], spec, &noise), 2.0 * k);
+        final_xy = test::xy_error(r.estimate, truth[k]);
+        if (converged_at > 0 && final_xy > 1.0) ++off;
+        if (converged_at == 0 && r.converged) {
+          ASSERT_LT(final_xy, 1.0) << g.name << ", seed " << seed << ": converged off";
+          converged_at = k;
+        }
+      }
+      ASSERT_GT(converged_at, 0u) << g.name << ", seed " << seed << ": never converged";
+      EXPECT_LE(off, g.allowed) << g.name << ", seed " << seed;
+      EXPECT_LT(final_xy, 0.1) << g.name << ", seed " << seed;
+    }
+  }
+}
+
 // Global localisation with sparse scans (0.5 m / 15 deg apart): while the set still holds
 // several places, the reported pose is the best one of its own place, not the middle of a
 // cloud the tempering limit keeps broad.

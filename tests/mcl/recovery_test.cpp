@@ -40,8 +40,8 @@ TEST_P(GlobalLocalisation, ConvergesFromAnywhere) {
   const test::LoopErrors e =
       test::run_loop(loc, world, truth, odom, spec,
                      {.noise_seed = 7 + start, .begin = start, .end = start + kBudget});
-  // Seen: converged after 10 / 9 / 11 / 12 updates (starts 0 / 60 / 110 / 170), final
-  // error 1.8-4.5 cm, 300 particles (KLD's minimum) at the end.
+  // Seen: converged after 3 / 2 / 5 / 2 updates (starts 0 / 60 / 110 / 170), final
+  // error 0.4-3.6 cm, 1000 particles (KLD's minimum) at the end.
   ASSERT_NE(e.first_converged, static_cast<std::size_t>(-1)) << "never converged";
   RecordProperty("converged_after", std::to_string(e.first_converged - start));
   RecordProperty("final_xy_m", std::to_string(e.final_xy));

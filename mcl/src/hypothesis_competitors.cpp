@@ -271,9 +271,9 @@ bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, doubl
 bool HypothesisTracker::overshadowed(const Competitor& c) const {
   // competitors_ is sorted by evidence: those before c are stronger.
   const auto stronger = competitors_.begin() + (&c - competitors_.data());
+  const std::size_t crossing = blocked_beams(c.pose);
   return std::any_of(competitors_.begin(), stronger, [&](const Competitor& d) {
-    return d.age >= 1 && d.fit >= c.fit + kConfirmGain &&
-           blocked_beams(d.pose) <= blocked_beams(c.pose);
+    return d.age >= 1 && d.fit >= c.fit + kConfirmGain && blocked_beams(d.pose) <= crossing;
   });
 }
 
@@ -289,8 +289,7 @@ void HypothesisTracker::maybe_switch(const Scored& ref, double fit, std::size_t 
   const auto winner =
       std::find_if(competitors_.begin(), competitors_.end(), [&](const Competitor& c) {
         return may_switch(c, ref, fit, blocked, step, lost) &&
-               !outscored_on_this_scan(all, c, ref.pose, cfg_.switch_evidence) &&
-               !overshadowed(c);
+               !outscored_on_this_scan(all, c, ref.pose, cfg_.switch_evidence) && !overshadowed(c);
       });
   if (winner == competitors_.end()) return;
   out.seed = {{winner->pose},

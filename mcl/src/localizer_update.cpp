@@ -313,7 +313,10 @@ void Localizer::hold_other_places(const Pose2& estimate) {
   // tracked like the rest. With odometry noisier than the model the converged cluster can
   // misfit the next scan, and one of them then took the whole set in one update, 17-42 m
   // off (bench/robustness/README.md). Held, they win only as the tracker's competitors do.
-  const auto hold = static_cast<float>(cfg_.hypotheses.rescue_xy);
+  // The radius within which a lineage's probation counts down (limit_probation_weight()).
+  const double radius = hypotheses_->hold_radius();
+  if (radius < 0.0) return;
+  const auto hold = static_cast<float>(radius);
   const auto ex = static_cast<float>(estimate.x), ey = static_cast<float>(estimate.y);
   const auto probation = static_cast<std::uint8_t>(cfg_.filter.recovery.probation);
   for (std::size_t i = 0; i < p_.size(); ++i) {

@@ -58,10 +58,10 @@ inline LocalizerConfig test_config(std::uint64_t seed = 42) {
 /// Global localisation tests. The defaults of the time (20000 particles after
 /// global_localize(), KLD floor 300) locked onto a wrong mode on the lab (the 180 deg
 /// turned room) and the office (2.5 m along the corridor) and dropped the mirror
-/// hypothesis of the corridor within a few updates: the kernel's reach (4 sigma of ~5 cm) is far smaller than the spacing of
-/// 20000 poses over the free space, so the first updates pick near-misses and the KLD
-/// floor lets one of them take over. 200000 initial particles and a floor of 5000 kept
-/// the right modes on every seed tried (lab 4/4, office 4/4, corridor 2/3).
+/// hypothesis of the corridor within a few updates: the kernel's reach (4 sigma of ~5 cm) is far
+/// smaller than the spacing of 20000 poses over the free space, so the first updates pick
+/// near-misses and the KLD floor lets one of them take over. 200000 initial particles and a floor
+/// of 5000 kept the right modes on every seed tried (lab 4/4, office 4/4, corridor 2/3).
 inline LocalizerConfig global_config(std::uint64_t seed = 42) {
   LocalizerConfig cfg = test_config(seed);
   cfg.filter.global_particles = 200000;

@@ -233,8 +233,8 @@ TEST(Hypotheses, NoisyOdometryAmidACrowdDoesNotTurnTheEstimate) {
     const Recovery off = run_crowded(g, seed, 0, false, kThinSet);
     std::printf(
         "  seed %llu: max error %.3f m; %zu particles: %.3f m, without the discount %.3f m\n",
-        static_cast<unsigned long long>(seed), on.max_after_return, kThinSet,
-        thin.max_after_return, off.max_after_return);
+        static_cast<unsigned long long>(seed), on.max_after_return, kThinSet, thin.max_after_return,
+        off.max_after_return);
     EXPECT_LT(on.max_after_return, 0.5);
     EXPECT_LT(thin.max_after_return, 0.5);
     lost_without += off.max_after_return >= 0.5 ? 1 : 0;

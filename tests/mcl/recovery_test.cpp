@@ -116,9 +116,9 @@ TEST(GlobalLocalisation, AGlitchRightAfterConvergingIsAbsorbed) {
     Pose2 odometry_error;
     std::size_t allowed;  // updates more than 1 m off (issue 13: 5 for a heading glitch)
   };
-  for (const Glitch& g : {Glitch{"60 deg", {0.0, 0.0, 60 * kDeg}, 5},
-                          Glitch{"90 deg", {0.0, 0.0, 90 * kDeg}, 5},
-                          Glitch{"2 m slip", {1.4, -1.4, 0.0}, 10}}) {
+  for (const Glitch& g :
+       {Glitch{"60 deg", {0.0, 0.0, 60 * kDeg}, 5}, Glitch{"90 deg", {0.0, 0.0, 90 * kDeg}, 5},
+        Glitch{"2 m slip", {1.4, -1.4, 0.0}, 10}}) {
     for (std::uint64_t seed = 1; seed <= 12; ++seed) {
       const auto odom = test::noisy_odometry(truth, MotionNoise{}, seed);
       LocalizerConfig cfg = global_config();

@@ -104,7 +104,7 @@ class Localizer {
   void seed_particles(const detail::SeedRequest& seed);
   void update_recovery_averages(double w_avg, UpdateResult& r) noexcept;
   void limit_probation_weight(const Pose2& prediction);  // map-local
-  /// Puts the particles farther than the rescue window from `estimate` (map-local) on
+  /// Puts the particles farther than the tracker's hold radius from `estimate` (map-local) on
   /// probation: on leaving global mode, the places the global search seeded are competitors.
   void hold_other_places(const Pose2& estimate);
   /// Lowers the weight of the particles that lead this update by the readings that crossed

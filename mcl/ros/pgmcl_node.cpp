@@ -4,14 +4,12 @@
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <geometry_msgs/PoseArray.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
-#include <message_filters/subscriber.h>
 #include <nav_msgs/GetMap.h>
 #include <nav_msgs/OccupancyGrid.h>
 #include <ros/ros.h>
 #include <sensor_msgs/LaserScan.h>
 #include <std_srvs/Empty.h>
 #include <tf2_ros/buffer.h>
-#include <tf2_ros/message_filter.h>
 #include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
 
@@ -27,6 +25,7 @@
 #include <vector>
 
 #include "node_core.hpp"
+#include "waiting_scans.hpp"
 #include "pgmcl/rosbag_io/ros1_messages.hpp"
 
 namespace pgmcl::ros1 {
@@ -143,6 +142,8 @@ class PgmclNode {
               }),
         opt_(core_.options()),
         listener_(buffer_),
+        waiting_scans_(nh_, buffer_, opt_.odom_frame_id, opt_.base_frame_id, 100,
+                       [this](const auto& scan, const auto& odom) { on_scan(scan, odom); }),
         pose_params_(pnh) {
     pose_pub_ = nh_.advertise<geometry_msgs::PoseWithCovarianceStamped>("amcl_pose", 100, true);
     cloud_pub_ = nh_.advertise<geometry_msgs::PoseArray>("particlecloud", 2, true);
@@ -156,10 +157,7 @@ class PgmclNode {
       request_map();
     }
     if (core_.has_map()) publish_cloud(true);  // where the filter starts
-    scan_sub_.subscribe(nh_, "scan", 100);
-    scan_filter_ = std::make_unique<tf2_ros::MessageFilter<sensor_msgs::LaserScan>>(
-        scan_sub_, buffer_, opt_.odom_frame_id, 100, nh_);
-    scan_filter_->registerCallback(&PgmclNode::on_scan, this);
+    scan_sub_ = nh_.subscribe("scan", 100, &WaitingScans::add, &waiting_scans_);
     initial_sub_ = nh_.subscribe("initialpose", 2, &PgmclNode::on_initial_pose, this);
     global_srv_ = nh_.advertiseService("global_localization", &PgmclNode::on_global, this);
     nomotion_srv_ = nh_.advertiseService("request_nomotion_update", &PgmclNode::on_nomotion, this);
@@ -205,7 +203,8 @@ class PgmclNode {
     }
   }
 
-  void on_scan(const sensor_msgs::LaserScanConstPtr& msg) {
+  void on_scan(const sensor_msgs::LaserScanConstPtr& msg,
+               const geometry_msgs::Transform& odom_T_base) {
     if (!core_.has_map()) return;
     const std::string frame = strip_slash(msg->header.frame_id);
     auto mount = mounts_.find(frame);
@@ -213,18 +212,12 @@ class PgmclNode {
       std::optional<Rigid> t = lookup(opt_.base_frame_id, frame, msg->header.stamp, 0.0);
       if (!t) t = lookup(opt_.base_frame_id, frame, ros::Time(0), 0.0);
       if (!t) {
+        ++scans_without_mount_;
         ROS_WARN_THROTTLE(5.0, "pgmcl: no transform %s -> %s yet; scan skipped",
                           opt_.base_frame_id.c_str(), frame.c_str());
         return;
       }
       mount = mounts_.emplace(frame, *t).first;
-    }
-    const std::optional<Rigid> odom =
-        lookup(opt_.odom_frame_id, opt_.base_frame_id, msg->header.stamp, 0.0);
-    if (!odom) {
-      ROS_WARN_THROTTLE(5.0, "pgmcl: no odometry %s -> %s at the scan's stamp; scan skipped",
-                        opt_.odom_frame_id.c_str(), opt_.base_frame_id.c_str());
-      return;
     }
     scan_.stamp = msg->header.stamp.toSec();
     scan_.angle_min = msg->angle_min;
@@ -232,7 +225,7 @@ class PgmclNode {
     scan_.range_min = msg->range_min;
     scan_.range_max = msg->range_max;
     scan_.ranges = msg->ranges;
-    const ScanResult r = core_.process_scan(scan_, mount->second, *odom);
+    const ScanResult r = core_.process_scan(scan_, mount->second, from_msg(odom_T_base));
     if (r.rejected) ROS_WARN_THROTTLE(5.0, "pgmcl: scan refused: %s", r.error.c_str());
     if (r.transform_ready && opt_.tf_broadcast) publish_transform();
     if (r.pose_ready) {
@@ -290,12 +283,15 @@ class PgmclNode {
     s.level =
         d.ok ? diagnostic_msgs::DiagnosticStatus::OK : diagnostic_msgs::DiagnosticStatus::WARN;
     s.message = d.message;
-    for (const auto& [k, v] : d.values) {
+    const auto add = [&s](const std::string& key, const std::string& value) {
       diagnostic_msgs::KeyValue kv;
-      kv.key = k;
-      kv.value = v;
+      kv.key = key;
+      kv.value = value;
       s.values.push_back(kv);
-    }
+    };
+    for (const auto& [k, v] : d.values) add(k, v);
+    add("dropped without odometry", std::to_string(waiting_scans_.dropped()));
+    add("skipped without laser mount", std::to_string(scans_without_mount_));
     arr.status.push_back(s);
     diag_pub_.publish(arr);
   }
@@ -351,13 +347,13 @@ class PgmclNode {
   tf2_ros::Buffer buffer_;
   tf2_ros::TransformListener listener_;
   tf2_ros::TransformBroadcaster broadcaster_;
-  message_filters::Subscriber<sensor_msgs::LaserScan> scan_sub_;
-  std::unique_ptr<tf2_ros::MessageFilter<sensor_msgs::LaserScan>> scan_filter_;
-  ros::Subscriber map_sub_, initial_sub_;
+  WaitingScans waiting_scans_;
+  ros::Subscriber scan_sub_, map_sub_, initial_sub_;
   ros::Publisher pose_pub_, cloud_pub_, diag_pub_;
   ros::ServiceServer global_srv_, nomotion_srv_;
   PoseParamWriter pose_params_;
   std::map<std::string, Rigid> mounts_;  // base_T_laser per scan frame
+  std::size_t scans_without_mount_ = 0;
   Scan scan_;
   std::vector<Particle> cloud_;
   ros::Time last_cloud_;

@@ -331,21 +331,35 @@ def run_all(args, work, env, procs, check):
         ts.transform.rotation.z, ts.transform.rotation.w = math.sin(src[2] / 2), math.cos(src[2] / 2)
         tf_pub.publish(TFMessage(transforms=[ts]))
 
-    def feed(k):
-        """Scan k with its odometry at the next stamp; waits until the node processed it."""
-        clock_t[0] += 0.5
-        t = clock_t[0]
-        publish_clock(t)
-        publish_odom(k, t)
+    def scan_message(k, t):
         s = scans[k]
         m = LaserScan(angle_min=s.angle_min, angle_max=s.angle_max,
                       angle_increment=s.angle_increment, range_min=s.range_min,
                       range_max=s.range_max, ranges=s.ranges)
         m.header.stamp = rospy.Time.from_sec(t)
         m.header.frame_id = s.header.frame_id
-        scan_pub.publish(m)
+        return m
+
+    def processed(ns):
+        return any(abs(c[0] - ns - tolerance * 1e9) < 1e6 for c in corrections)
+
+    def feed(k, late_odometry=False):
+        """Scan k with its odometry at the next stamp; waits until the node processed it.
+        late_odometry: the scan comes first, the odometry 0.3 s later."""
+        clock_t[0] += 0.5
+        t = clock_t[0]
+        publish_clock(t)
+        m = scan_message(k, t)
         ns = m.header.stamp.to_nsec()
-        done = wait_for(lambda: any(abs(c[0] - ns - tolerance * 1e9) < 1e6 for c in corrections), 10)
+        if late_odometry:
+            scan_pub.publish(m)
+            time.sleep(0.3)
+            check(not processed(ns), "a scan before its odometry waits for it")
+            publish_odom(k, t)
+        else:
+            publish_odom(k, t)
+            scan_pub.publish(m)
+        done = wait_for(lambda: processed(ns), 10)
         if not done:
             raise RuntimeError(f"the node did not process the scan stamped {t}: "
                                + node_state(node, f"{work}/pgmcl_node.log", corrections))
@@ -402,6 +416,16 @@ def run_all(args, work, env, procs, check):
     forced = feed(k + 20)
     check(forced is not None, "request_nomotion_update: the repeated scan updates")
 
+    # Odometry after the scan: the scan waits for it. A scan older than the node's transform
+    # buffer (10 s) is dropped, with a warning (and counted in /diagnostics).
+    check(feed(k + 21, late_odometry=True) is not None,
+          "a scan whose odometry comes 0.3 s later updates")
+    scan_pub.publish(scan_message(k + 21, clock_t[0] - 30.0))
+    check(feed(k + 22) is not None, "the scan after a dropped one updates")
+    warned = wait_for(lambda: "older than the buffer holds); scan dropped" in
+                      open(f"{work}/pgmcl_node.log", errors="replace").read(), 2)
+    check(warned, "a scan 30 s older than the odometry is dropped with a warning")
+
     # global_localization: the cloud spreads over the map, and the filter finds the robot.
     n_clouds = len(clouds)
     rospy.ServiceProxy("/global_localization", Empty)()
@@ -412,14 +436,14 @@ def run_all(args, work, env, procs, check):
     check(len(cloud) >= 10000 and cloud.std(axis=0).min() > 3.0,
           f"global_localization: {len(cloud)} particles, std {cloud.std(axis=0).min():.1f} m")
     found = None
-    for j in range(k + 21, min(k + 221, len(scans))):
+    for j in range(k + 23, min(k + 223, len(scans))):
         p = feed(j)
         if p is not None and math.hypot(p[1] - truth_at(j)[0], p[2] - truth_at(j)[1]) < 0.3:
             found = found or j
         elif p is not None:
             found = None
     check(found is not None, f"global_localization: within 0.3 m of the truth from scan "
-                             f"{found and found - k - 21} after the call on")
+                             f"{found and found - k - 23} after the call on")
 
     # ---- Phase 3: a restart without initial_pose_* and ~map_file: the map comes on the
     # `map` topic (use_map_topic), and the node resumes from ~pose_file. A second map in the

@@ -39,6 +39,13 @@ class WaitingScans {
             false, false)) {}
 
   void add(const sensor_msgs::LaserScanConstPtr& scan) {
+    // A scan stamped well before those waiting: the clock went back (a looped bag), and
+    // their odometry will not come before the new scans'.
+    const double jumped = scan->header.stamp.toSec() + kClockJumpSeconds;
+    while (!waiting_.empty() && waiting_.back()->header.stamp.toSec() > jumped) {
+      waiting_.pop_back();
+      drop("the clock went back; a scan waiting for odometry is dropped");
+    }
     if (waiting_.size() >= capacity_) {
       waiting_.pop_front();
       drop("more than " + std::to_string(capacity_) +
@@ -51,12 +58,15 @@ class WaitingScans {
   WaitingScans(const WaitingScans&) = delete;  // the timer calls back into this object
   WaitingScans& operator=(const WaitingScans&) = delete;
 
-  /// Scans that never got their odometry (dropped from a full queue, or older than the
-  /// buffer holds), for the diagnostics.
+  /// Scans that never got their odometry (dropped from a full queue, older than the buffer
+  /// holds, or waiting when the clock went back), for the diagnostics.
   [[nodiscard]] std::size_t dropped() const noexcept { return dropped_; }
 
  private:
   static constexpr double kRetrySeconds = 0.01;
+  // Scans of several lasers may arrive a little out of order; a clock that went back
+  // differs by more.
+  static constexpr double kClockJumpSeconds = 1.0;
 
   void release() {
     while (!waiting_.empty()) {

@@ -25,8 +25,8 @@
 #include <vector>
 
 #include "node_core.hpp"
-#include "waiting_scans.hpp"
 #include "pgmcl/rosbag_io/ros1_messages.hpp"
+#include "waiting_scans.hpp"
 
 namespace pgmcl::ros1 {
 namespace {

@@ -1,8 +1,8 @@
 #pragma once
 // Scans waiting for the odometry at their stamps (ROS side, C++17). This replaces
 // tf2_ros::MessageFilter: in Debian's tf2_ros 0.7.6 the filter loses a scan whose transform
-// arrives on the listener's thread while the scan is being queued (ros/geometry2#538), and
-// the node then stalls until the next scan.
+// arrives on the listener's thread while the scan is being queued (ros/geometry2#538): it
+// then waits until a hundred newer scans push it out, never processed.
 
 #include <geometry_msgs/TransformStamped.h>
 #include <ros/ros.h>

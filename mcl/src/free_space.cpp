@@ -1,6 +1,7 @@
 #include "free_space.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -12,6 +13,8 @@ namespace {
 
 // Past a cell edge, into the next cell (cells; rays are at most a few thousand cells long).
 constexpr float kNudge = 1e-3f;
+// Rays marched at once: enough to overlap the lookups' memory latency.
+constexpr std::size_t kRaysInFlight = 8;
 
 // Distance along a ray with direction component u from coordinate v to the next cell edge.
 float to_next_cell(float v, float u) noexcept {
@@ -37,13 +40,6 @@ FreeSpace::FreeSpace(int width, int height, double resolution,
   }
 }
 
-std::uint8_t FreeSpace::clearance_at(float col, float row) const noexcept {
-  const int c = maps::floor_to_cell(col), r = maps::floor_to_cell(row);
-  if (c < 0 || r < 0 || c >= width_ || r >= height_) return 0;  // off the map: never seen
-  return clearance_[static_cast<std::size_t>(r) * static_cast<std::size_t>(width_) +
-                    static_cast<std::size_t>(c)];
-}
-
 bool FreeSpace::is_free(double x, double y) const noexcept {
   return clearance_at(static_cast<float>(x / resolution_), static_cast<float>(y / resolution_)) > 0;
 }
@@ -56,27 +52,54 @@ void FreeSpace::for_each_blocked(const Pose2& pose, const PreparedBeams& beams, 
   const auto px = static_cast<float>(pose.x / resolution_);
   const auto py = static_cast<float>(pose.y / resolution_);
   const float sx = px + c * sensor_x - s * sensor_y, sy = py + s * sensor_x + c * sensor_y;
-  for (std::size_t j = 0; j < beams.size(); ++j) {
-    const float ex = px + c * beams.ex[j] - s * beams.ey[j];
-    const float ey = py + s * beams.ex[j] + c * beams.ey[j];
-    const float dx = ex - sx, dy = ey - sy;
-    const float length = std::sqrt(dx * dx + dy * dy);
-    const float stop = length - ray_margin_;
-    if (!(stop > 0.0f)) continue;
-    const float ux = dx / length, uy = dy / length;
-    for (float t = 0.0f; t < stop;) {
-      const float x = sx + ux * t, y = sy + uy * t;
+  // Several rays are marched in turn, a step each: one ray's steps wait on each other's
+  // lookups, several rays' lookups overlap. Each ray's own arithmetic is unchanged.
+  struct Ray {
+    float ux, uy, t, stop;
+    std::size_t j;
+  };
+  std::array<Ray, kRaysInFlight> rays{};
+  std::size_t next = 0;  // the next beam to start
+  const auto start = [&](Ray& ray) {
+    for (; next < beams.size(); ++next) {
+      const float ex = px + c * beams.ex[next] - s * beams.ey[next];
+      const float ey = py + s * beams.ex[next] + c * beams.ey[next];
+      const float dx = ex - sx, dy = ey - sy;
+      const float length = std::sqrt(dx * dx + dy * dy);
+      const float stop = length - ray_margin_;
+      if (!(stop > 0.0f)) continue;
+      ray = {dx / length, dy / length, 0.0f, stop, next++};
+      return true;
+    }
+    return false;
+  };
+  std::size_t flying = 0;
+  while (flying < kRaysInFlight && start(rays[flying])) ++flying;
+  while (flying > 0) {
+    for (std::size_t r = 0; r < flying;) {
+      Ray& ray = rays[r];
+      const float x = sx + ray.ux * ray.t, y = sy + ray.uy * ray.t;
       const std::uint8_t k = clearance_at(x, y);
-      if (k == 0) {
-        on_blocked(j);
-        break;
+      bool landed = k == 0;
+      if (landed) {
+        on_blocked(ray.j);
+      } else {
+        // Sphere tracing: from a cell whose centre lies k cells from every blocked cell's
+        // centre the ray may advance k - 1.5 cells and touch none of them. Near walls it
+        // steps cell by cell (to the next cell edge it crosses), so no corner is cut.
+        if (k >= 3) {
+          ray.t += static_cast<float>(k) - 1.5f;
+        } else {
+          const float across_x = to_next_cell(x, ray.ux), across_y = to_next_cell(y, ray.uy);
+          ray.t += (across_x < across_y ? across_x : across_y) + kNudge;
+        }
+        landed = !(ray.t < ray.stop);
       }
-      // Sphere tracing: from a cell whose centre lies k cells from every blocked cell's
-      // centre the ray may advance k - 1.5 cells and touch none of them. Near walls it
-      // steps cell by cell (to the next cell edge it crosses), so no corner is cut.
-      t += k >= 3                                      ? static_cast<float>(k) - 1.5f
-           : to_next_cell(x, ux) < to_next_cell(y, uy) ? to_next_cell(x, ux) + kNudge
-                                                       : to_next_cell(y, uy) + kNudge;
+      if (!landed) {
+        ++r;
+      } else if (!start(ray)) {
+        ray = rays[--flying];  // the last ray in flight takes this one's place
+      }
     }
   }
 }
@@ -93,6 +116,7 @@ void FreeSpace::blocked_beam_indices(const Pose2& pose, const PreparedBeams& bea
   out.clear();
   for_each_blocked(pose, beams, sensor_x, sensor_y,
                    [&](std::size_t j) { out.push_back(static_cast<std::uint32_t>(j)); });
+  std::sort(out.begin(), out.end());
 }
 
 }  // namespace pgmcl::detail

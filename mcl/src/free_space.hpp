@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "pgmcl/common/se2.hpp"
+#include "pgmcl/maps/likelihood_field.hpp"
 #include "pgmcl/mcl/measurement_model.hpp"
 
 namespace pgmcl::detail {
@@ -36,8 +37,14 @@ class FreeSpace {
   [[nodiscard]] std::size_t bytes() const noexcept { return clearance_.size(); }
 
  private:
-  [[nodiscard]] std::uint8_t clearance_at(float col, float row) const noexcept;
-  /// Calls `on_blocked(j)` for each blocked beam j, in order.
+  // Inline: the ray march's inner loop calls it some twenty times per beam.
+  [[nodiscard]] std::uint8_t clearance_at(float col, float row) const noexcept {
+    const int c = maps::floor_to_cell(col), r = maps::floor_to_cell(row);
+    if (c < 0 || r < 0 || c >= width_ || r >= height_) return 0;  // off the map: never seen
+    return clearance_[static_cast<std::size_t>(r) * static_cast<std::size_t>(width_) +
+                      static_cast<std::size_t>(c)];
+  }
+  /// Calls `on_blocked(j)` once for each blocked beam j, in no set order.
   template <class OnBlocked>
   void for_each_blocked(const Pose2& pose, const PreparedBeams& beams, float sensor_x,
                         float sensor_y, OnBlocked&& on_blocked) const;

@@ -142,9 +142,13 @@ class Localizer {
     std::vector<double> log_w_probation, log_w_tracked;  // limit_probation_weight()
     std::vector<std::uint32_t> seed_victims;             // seed_particles()
     std::vector<double> estimate_w;                      // compute_estimate(): untempered
-    std::vector<std::uint32_t> by_weight, blocked;       // discount_blocked_readings()
-    PreparedBeams blocked_beams;                         // ... one particle's blocked beams
+    std::vector<std::uint32_t> by_weight;                // discount_blocked_readings()
     std::vector<double> discounts;                       // ... per checked particle, nats
+    struct BlockedReadings {  // ... one particle's blocked beams, per parallel slice
+      std::vector<std::uint32_t> indices;
+      PreparedBeams beams;
+    };
+    std::vector<BlockedReadings> blocked;
   };
 
   ParticleSet p_;

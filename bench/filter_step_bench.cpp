@@ -84,6 +84,7 @@ void step(benchmark::State& state, TableKind kind, int size_m, std::size_t n, st
     sum.motion_ms += r.timings.motion_ms;
     sum.measurement_ms += r.timings.measurement_ms;
     sum.hypotheses_ms += r.timings.hypotheses_ms;
+    sum.free_space_ms += r.timings.free_space_ms;
     sum.resample_ms += r.timings.resample_ms;
     sum.estimate_ms += r.timings.estimate_ms;
     beams_used += static_cast<double>(r.beams_used);
@@ -96,6 +97,7 @@ void step(benchmark::State& state, TableKind kind, int size_m, std::size_t n, st
   state.counters["motion_ms"] = sum.motion_ms / it;
   state.counters["measure_ms"] = sum.measurement_ms / it;
   state.counters["hypotheses_ms"] = sum.hypotheses_ms / it;  // of measure_ms
+  state.counters["free_space_ms"] = sum.free_space_ms / it;  // of measure_ms
   state.counters["resample_ms"] = sum.resample_ms / it;
   state.counters["estimate_ms"] = sum.estimate_ms / it;
   state.counters["beams_used"] = beams_used / it;

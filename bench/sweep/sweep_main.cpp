@@ -56,6 +56,7 @@ struct RunResult {
   std::size_t scans = 0, updates = 0;
   double ms_per_scan = 0, update_ms_mean = 0, update_ms_p95 = 0;
   double hypotheses_ms_mean = 0;  // of update_ms_mean
+  double free_space_ms_mean = 0;  // of update_ms_mean
   double particles_mean = 0, beams_used_mean = 0;
   double ate_rmse = 0, ate_max = 0, heading_rmse_deg = 0;
   bool pareto = false;
@@ -92,7 +93,7 @@ RunResult run_one(const pb::Dataset& d, std::shared_ptr<const pgmcl::maps::Likel
   loc.set_pose(d.truth.front(), cov);
   RunResult r;
   std::vector<double> update_ms;
-  double total_ms = 0, hypotheses_ms = 0, sq = 0, sq_h = 0, particles = 0, beams = 0;
+  double total_ms = 0, hypotheses_ms = 0, free_space_ms = 0, sq = 0, sq_h = 0, particles = 0, beams = 0;
   for (std::size_t k = 0; k < d.scans.size(); ++k) {
     const auto t0 = std::chrono::steady_clock::now();
     const pgmcl::UpdateResult u = loc.update(d.odometry[k], d.scans[k], d.stamps[k]);
@@ -102,6 +103,7 @@ RunResult run_one(const pb::Dataset& d, std::shared_ptr<const pgmcl::maps::Likel
     if (u.measured()) {
       update_ms.push_back(ms);
       hypotheses_ms += u.timings.hypotheses_ms;
+      free_space_ms += u.timings.free_space_ms;
       particles += static_cast<double>(u.particles);
       beams += static_cast<double>(u.beams_used);
     }
@@ -122,6 +124,7 @@ RunResult run_one(const pb::Dataset& d, std::shared_ptr<const pgmcl::maps::Likel
     r.update_ms_mean = t.mean;
     r.update_ms_p95 = t.p95;
     r.hypotheses_ms_mean = hypotheses_ms / static_cast<double>(update_ms.size());
+    r.free_space_ms_mean = free_space_ms / static_cast<double>(update_ms.size());
     r.particles_mean = particles / static_cast<double>(update_ms.size());
     r.beams_used_mean = beams / static_cast<double>(update_ms.size());
   }
@@ -244,12 +247,12 @@ int main(int argc, char** argv) {
     const RunResult r = run_one(d, field(c.kind), free_cells, c, threads, motion);
     std::printf(
         "  %-24s %-10s n=%-6zu beams=%-5s g%s s%s k%s r%s seed %llu: %7.3f ms/scan "
-        "(%zu updates, %.3f ms each, hypotheses %.3f)  ATE %.3f m (max %.2f)\n",
+        "(%zu updates, %.3f ms each, hypotheses %.3f, free space %.3f)  ATE %.3f m (max %.2f)\n",
         c.study.c_str(), pgmcl::maps::to_string(c.kind), c.particles,
         c.subsample ? std::to_string(c.beams).c_str() : "all", on_off(c.gating),
         on_off(c.selective), on_off(c.kld), on_off(c.recovery),
         static_cast<unsigned long long>(c.seed), r.ms_per_scan, r.updates, r.update_ms_mean,
-        r.hypotheses_ms_mean, r.ate_rmse, r.ate_max);
+        r.hypotheses_ms_mean, r.free_space_ms_mean, r.ate_rmse, r.ate_max);
     std::fflush(stdout);
     rows.emplace_back(c, r);
   };
@@ -326,19 +329,19 @@ int main(int argc, char** argv) {
       "dataset,study,kind,particles,beams,gating,selective,kld,subsample,seed,threads,"
       "scans,updates,ms_per_scan,update_ms_mean,update_ms_p95,particles_mean,"
       "beams_used_mean,ate_rmse_m,ate_max_m,heading_rmse_deg,pareto,recovery,"
-      "hypotheses_ms_mean",
+      "hypotheses_ms_mean,free_space_ms_mean",
       "pgmcl_sweep");
   if (!f) return 1;
   for (const auto& [c, r] : rows)
     std::fprintf(f,
                  "%s,%s,%s,%zu,%zu,%s,%s,%s,%s,%llu,%d,%zu,%zu,%.4f,%.4f,%.4f,%.1f,%.1f,%.5f,%.4f,%"
-                 ".3f,%d,%d,%.4f\n",
+                 ".3f,%d,%d,%.4f,%.4f\n",
                  name.c_str(), c.study.c_str(), pgmcl::maps::to_string(c.kind), c.particles,
                  c.beams, on_off(c.gating), on_off(c.selective), on_off(c.kld), on_off(c.subsample),
                  static_cast<unsigned long long>(c.seed), threads, r.scans, r.updates,
                  r.ms_per_scan, r.update_ms_mean, r.update_ms_p95, r.particles_mean,
                  r.beams_used_mean, r.ate_rmse, r.ate_max, r.heading_rmse_deg, r.pareto ? 1 : 0,
-                 c.recovery ? 1 : 0, r.hypotheses_ms_mean);
+                 c.recovery ? 1 : 0, r.hypotheses_ms_mean, r.free_space_ms_mean);
   std::fclose(f);
 
   if (switches) {

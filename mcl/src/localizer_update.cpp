@@ -250,7 +250,11 @@ bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, Up
           : detail::limit_tempering(p_.log_w, ws_.scan_ll, tau_cfg, lc.min_ess_ratio);
   r.tempering = tau;
   for (std::size_t i = 0; i < n; ++i) p_.log_w[i] += tau * ws_.scan_ll[i];
-  if (judge_free_space) discount_blocked_readings(tau);
+  if (judge_free_space) {
+    const auto tf = Clock::now();
+    discount_blocked_readings(tau);
+    r.timings.free_space_ms = ms_since(tf);
+  }
   (void)normalise_log_weights(p_.log_w, p_.w);
   limit_probation_weight(prediction);
   r.n_eff = effective_sample_size(p_.w);

@@ -199,13 +199,14 @@ void bind_result(py::module_& m) {
             d["motion_ms"] = r.timings.motion_ms;
             d["measurement_ms"] = r.timings.measurement_ms;
             d["hypotheses_ms"] = r.timings.hypotheses_ms;
+            d["free_space_ms"] = r.timings.free_space_ms;
             d["resample_ms"] = r.timings.resample_ms;
             d["estimate_ms"] = r.timings.estimate_ms;
             d["total_ms"] = r.timings.total_ms;
             return d;
           },
           "Wall time of each stage in milliseconds: motion_ms, measurement_ms (of which "
-          "hypotheses_ms), resample_ms, estimate_ms, total_ms.")
+          "hypotheses_ms and free_space_ms), resample_ms, estimate_ms, total_ms.")
       .def("__repr__", [](const UpdateResult& r) {
         return "pgmcl.UpdateResult(estimate=" +
                py::repr(pose_tuple(r.estimate)).cast<std::string>() +

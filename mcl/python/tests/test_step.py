@@ -69,9 +69,10 @@ def test_results_carry_the_engines_fields(stepped):
     assert all(isinstance(r.alternative_evidence, float) for r in full)
     last = full[-1]
     assert last.covariance.shape == (3, 3) and np.allclose(last.covariance, last.covariance.T)
-    assert set(last.timings) == {"motion_ms", "measurement_ms", "hypotheses_ms", "resample_ms",
-                                 "estimate_ms", "total_ms"}
+    assert set(last.timings) == {"motion_ms", "measurement_ms", "hypotheses_ms", "free_space_ms",
+                                 "resample_ms", "estimate_ms", "total_ms"}
     assert 0 <= last.timings["hypotheses_ms"] <= last.timings["measurement_ms"]
+    assert 0 <= last.timings["free_space_ms"] <= last.timings["measurement_ms"]
     assert 0 < last.n_eff <= last.particles
     poses, weights = loc.particles()
     assert poses.shape == (loc.last_result.particles, 3) and weights.shape == (len(poses),)

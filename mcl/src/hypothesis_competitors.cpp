@@ -41,6 +41,10 @@ constexpr double kFadedHeading = 0.17;
 // Metres of new view over which a place the sweep found must stay ahead of a prediction
 // that still fits, before the filter moves there.
 constexpr double kSettledView = 10.0;
+// Scans a shift beyond a glitch's reach must have been tracked before it may win while the
+// prediction is not lost and the free space does not confirm it: aliases 2 m along fr079's
+// and aces's corridors won at 1-2 scans and lost again at the next.
+constexpr int kSlipScans = 3;
 // The map sweep's budget while the prediction is lost.
 constexpr double kLostSweepBoost = 4.0;
 // Coarse candidates a rescue search refines, and the best of them it keeps. The coarse
@@ -265,6 +269,11 @@ bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, doubl
   // as well as the next: the free space must not speak for the prediction.
   if (turned < kFadedHeading && crossing > blocked) return false;
   if (!abrupt && !(nearby && turned >= kFadedHeading)) return false;
+  // Beyond a glitch's reach from a prediction that is not lost lie a corridor's aliases,
+  // which one update's people or dropout can favour: unless the free space confirms it,
+  // such a shift wins only once tracked for kSlipScans scans. An alias's lead fades within
+  // them; a slip's true pose keeps it.
+  if (!nearby && !lost && !confirmed && c.age < kSlipScans) return false;
   return c.fit >= fit + (abrupt ? 0.5 : 1.0) * kGlitchGain;
 }
 

@@ -93,7 +93,8 @@ RunResult run_one(const pb::Dataset& d, std::shared_ptr<const pgmcl::maps::Likel
   loc.set_pose(d.truth.front(), cov);
   RunResult r;
   std::vector<double> update_ms;
-  double total_ms = 0, hypotheses_ms = 0, free_space_ms = 0, sq = 0, sq_h = 0, particles = 0, beams = 0;
+  double total_ms = 0, hypotheses_ms = 0, free_space_ms = 0, sq = 0, sq_h = 0, particles = 0,
+         beams = 0;
   for (std::size_t k = 0; k < d.scans.size(); ++k) {
     const auto t0 = std::chrono::steady_clock::now();
     const pgmcl::UpdateResult u = loc.update(d.odometry[k], d.scans[k], d.stamps[k]);

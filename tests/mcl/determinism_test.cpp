@@ -2,6 +2,8 @@
 // a seed fixes the whole trajectory whatever the thread count.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -118,6 +120,49 @@ TEST(Determinism, SameSeedSameTrajectoryForOneAndTwoThreads) {
   EXPECT_GT(resampled, 0u);  // the comparison covered resampling too
   EXPECT_TRUE(same_bits(pa.x, c.particles().x));
   std::printf("  adaptive: %zu of 60 updates on the team\n", team);
+}
+
+// The free-space discount works its particles out in parallel with a team (Localizer::
+// discount_blocked_readings): people the map does not show gather around the robot, the
+// scan stops fitting and the discount runs, and the weights stay the serial reference's bits.
+TEST(Determinism, FreeSpaceDiscountSameBitsForOneAndTwoThreads) {
+  const test::World world = test::make_room(0.05);
+  const auto truth = test::loop_trajectory(0.5, 15 * std::numbers::pi / 180.0);
+  const auto odom = test::noisy_odometry(truth, MotionNoise{}, 3);
+  test::ScanSpec spec;
+  spec.noise_sigma = 0.01;
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  cov.diagonal() << 0.01, 0.01, 0.003;
+  Localizer a(world.grid, tracking_config(1)), b(world.grid, tracking_config(2));
+  a.set_pose(truth[0], cov);
+  b.set_pose(truth[0], cov);
+  Rng noise_a(9), noise_b(9), crowd(11);
+  std::size_t discounted = 0;
+  const std::size_t steps = std::min<std::size_t>(60, truth.size());
+  for (std::size_t k = 0; k < steps; ++k) {
+    // From step 20 on, eight 40 cm "people" stand 0.9-1.7 m around the robot.
+    test::World scene = world;
+    const Pose2& p = truth[k];
+    for (int i = 0; i < (k >= 20 ? 8 : 0); ++i) {
+      const double angle = p.theta + 2.0 * std::numbers::pi * (i + 0.3 * crowd.uniform()) / 8.0;
+      const double d = 0.9 + 0.8 * crowd.uniform();
+      const double x = p.x + d * std::cos(angle), y = p.y + d * std::sin(angle);
+      scene.rects.push_back({x - 0.2, y - 0.2, x + 0.2, y + 0.2});
+    }
+    const double t = 0.1 * static_cast<double>(k);
+    const UpdateResult ra = a.update(odom[k], scene.scan(p, spec, &noise_a), t);
+    const UpdateResult rb = b.update(odom[k], scene.scan(p, spec, &noise_b), t);
+    discounted += ra.timings.free_space_ms > 0.0 && rb.timings.free_space_ms > 0.0 ? 1 : 0;
+    ASSERT_EQ(ra.estimate.x, rb.estimate.x) << "step " << k;
+    ASSERT_EQ(ra.estimate.theta, rb.estimate.theta) << "step " << k;
+    ASSERT_EQ(ra.n_eff, rb.n_eff) << "step " << k;
+  }
+  EXPECT_GT(discounted, 0u) << "the crowd no longer makes the discount run";
+  const ParticlesView pa = a.particles(), pb = b.particles();
+  EXPECT_TRUE(same_bits(pa.x, pb.x));
+  ASSERT_EQ(pa.weight.size(), pb.weight.size());
+  EXPECT_EQ(0, std::memcmp(pa.weight.data(), pb.weight.data(), pa.weight.size() * sizeof(double)));
+  std::printf("  the discount ran on %zu of %zu updates\n", discounted, steps);
 }
 
 // A different seed gives a different particle set (the seed is really used).

@@ -43,7 +43,7 @@ constexpr double kFadedHeading = 0.17;
 constexpr double kSettledView = 10.0;
 // Scans a shift beyond a glitch's reach must have been tracked before it may win while the
 // prediction is not lost and the free space does not confirm it: aliases 2 m along fr079's
-// and aces's corridors won at 1-2 scans and lost again at the next.
+// and aces's corridors won one or two updates after they were proposed, and lost again.
 constexpr int kSlipScans = 3;
 // The map sweep's budget while the prediction is lost.
 constexpr double kLostSweepBoost = 4.0;

@@ -161,6 +161,7 @@ void Localizer::reset_after_init() {
   clustered_ = r.converged;
   unimodal_ = 0;
   adaptable_ = false;  // the noise factors learnt so far stay: the same odometry
+  have_usual_fit_ = false;
   r.rotation_noise_factor = motion_noise_->rotation_factor();
   r.translation_noise_factor = motion_noise_->translation_factor();
   anchor_ = r.estimate;

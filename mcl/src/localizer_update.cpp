@@ -26,6 +26,8 @@ bool finite(const Pose2& p) noexcept {
 // The tempering limit is lifted once one cluster has held nearly all the weight for this
 // many scans in a row.
 constexpr int kUnimodalUpdates = 3;
+// The usual fit follows about the last 100 converged updates (the tracker's own rate).
+constexpr double kUsualFitRate = 0.01;
 
 [[noreturn]] void bad_scan(const std::string& why) {
   throw std::invalid_argument("Localizer::update: " + why);
@@ -138,6 +140,7 @@ UpdateResult Localizer::update(const Pose2& odometry_pose, const LaserScan& scan
   r.rotation_noise_factor = motion_noise_->rotation_factor();
   r.translation_noise_factor = motion_noise_->translation_factor();
   if (r.alternative_evidence > 0.0) r.converged = false;
+  if (measured && r.converged) confirm_by_fit(r);
   r.timings.estimate_ms = ms_since(te);
 
   const std::size_t scored = p_.size();
@@ -154,6 +157,18 @@ UpdateResult Localizer::update(const Pose2& odometry_pose, const LaserScan& scan
                           static_cast<double>(scored) * static_cast<double>(r.beams_used));
   last_ = r;
   return r;
+}
+
+void Localizer::confirm_by_fit(UpdateResult& r) noexcept {
+  // Converged updates learn how well the map fits here; one whose scan fits the estimate far
+  // worse cannot confirm its pose, as the tracker's prediction counts as lost on such a fall.
+  if (!have_usual_fit_) {
+    usual_fit_ = r.fit;
+    have_usual_fit_ = true;
+  }
+  const bool fits = r.fit >= cfg_.estimate.converged_fit_ratio * usual_fit_;
+  usual_fit_ += kUsualFitRate * (r.fit - usual_fit_);
+  if (!fits) r.converged = false;
 }
 
 void Localizer::motion_update(const Pose2& odom_prev, const Pose2& odom_now) {

@@ -258,6 +258,8 @@ void describe_gating_and_estimate(V& v, Config& c) {
              e.converged_xy_std, kPositive);
     v.number(Field{"converged_theta_std", "rad", "converged: its heading std is below this"},
              e.converged_theta_std, kPositive);
+    v.number(Field{"converged_fit_ratio", "", "converged: the scan fits this share of usual"},
+             e.converged_fit_ratio, Bounds{0.0, 1.0});
   });
 }
 

@@ -103,6 +103,8 @@ class Localizer {
   /// Redraws the `count` lightest particles around `seed.poses` before the scan scores them.
   void seed_particles(const detail::SeedRequest& seed);
   void update_recovery_averages(double w_avg, UpdateResult& r) noexcept;
+  /// Withdraws r.converged while the scan fits the estimate far worse than usual.
+  void confirm_by_fit(UpdateResult& r) noexcept;
   void limit_probation_weight(const Pose2& prediction);  // map-local
   /// Puts the particles farther than the tracker's hold radius from `estimate` (map-local) on
   /// probation: on leaving global mode, the places the global search seeded are competitors.
@@ -165,6 +167,9 @@ class Localizer {
   bool clustered_ = false;  // the last estimate met EstimateConfig's cluster criterion
   bool one_mode_ = false;  // the last estimate: one cluster with nearly all the weight, <= 1 m wide
   int unimodal_ = 0;       // consecutive updates with one_mode_
+  // UpdateResult::fit over converged updates (EstimateConfig::converged_fit_ratio).
+  bool have_usual_fit_ = false;
+  double usual_fit_ = 0.0;
 
   // Filter state.
   bool have_odom_ = false;

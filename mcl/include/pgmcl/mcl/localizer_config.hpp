@@ -133,6 +133,12 @@ struct EstimateConfig {
   double converged_weight = 0.9;                         ///< fraction of the total weight
   double converged_xy_std = 0.25;                        ///< metres (sqrt of largest eigenvalue)
   double converged_theta_std = 10.0 * std::numbers::pi / 180.0;  ///< radians
+  /// Reported `converged` also needs the scan to fit the estimate at least this fraction
+  /// of its usual fit (UpdateResult::fit, running mean over ~100 converged updates): a
+  /// filter settled in the wrong place, or one a crowd hides the walls from, cannot
+  /// confirm its pose. Only the report: the filter's own dynamics use the cluster alone.
+  /// 0 turns it off.
+  double converged_fit_ratio = 0.6;
 };
 
 /// Competing hypotheses from scan-to-map search (pose_search.hpp): poses that odometry and

@@ -41,8 +41,9 @@ struct UpdateResult {
   Eigen::Matrix3d mean_covariance = Eigen::Matrix3d::Zero();  ///< of `mean`, global frame
   double cluster_weight = 0.0;  ///< weight of the heaviest cluster, in [0, 1]
   std::size_t clusters = 0;     ///< number of clusters found
-  /// One dominant compact cluster (EstimateConfig) and no competing hypothesis that fits
-  /// better so far (HypothesesConfig).
+  /// One dominant compact cluster (EstimateConfig), no competing hypothesis that fits
+  /// better so far (HypothesesConfig), and a scan that fits the estimate about as well as
+  /// usual (EstimateConfig::converged_fit_ratio).
   bool converged = false;
 
   SkipReason skipped = SkipReason::kNone;

@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
-#include <cmath>
 #include <cstddef>
 #include <numbers>
 #include <vector>
@@ -15,16 +14,11 @@
 namespace pgmcl {
 namespace {
 
-struct Step {
-  UpdateResult r;
-  std::size_t k = 0;
-};
-
 // The room's loop, tracked from the truth, 60 scans. From `crowd_from` on, eight 40 cm
 // "people" stand 0.9-1.7 m around the robot; from `kidnap_from` on, the scans come from
 // `kidnap_shift` (robot frame) away from where the odometry says the robot is.
-std::vector<Step> run(double fit_ratio, std::size_t crowd_from, std::size_t kidnap_from,
-                      const Pose2& kidnap_shift = {}) {
+std::vector<UpdateResult> run(double fit_ratio, std::size_t crowd_from, std::size_t kidnap_from,
+                              const Pose2& kidnap_shift = {}) {
   const test::World world = test::make_room(0.05);
   const auto truth = test::loop_trajectory(0.5, 15 * std::numbers::pi / 180.0);
   const auto odom = test::noisy_odometry(truth, MotionNoise{}, 3);
@@ -38,28 +32,22 @@ std::vector<Step> run(double fit_ratio, std::size_t crowd_from, std::size_t kidn
   cov.diagonal() << 0.01, 0.01, 0.003;
   loc.set_pose(truth[0], cov);
   Rng noise(9), crowd(11);
-  std::vector<Step> out;
+  std::vector<UpdateResult> out;
   for (std::size_t k = 0; k < std::min<std::size_t>(60, truth.size()); ++k) {
     test::World scene = world;
     const Pose2 p = k >= kidnap_from ? truth[k].compose(kidnap_shift) : truth[k];
-    for (int i = 0; i < (k >= crowd_from ? 8 : 0); ++i) {
-      const double angle = p.theta + 2.0 * std::numbers::pi * (i + 0.3 * crowd.uniform()) / 8.0;
-      const double d = 0.9 + 0.8 * crowd.uniform();
-      const double x = p.x + d * std::cos(angle), y = p.y + d * std::sin(angle);
-      scene.rects.push_back({x - 0.2, y - 0.2, x + 0.2, y + 0.2});
-    }
-    out.push_back(
-        {loc.update(odom[k], scene.scan(p, spec, &noise), 0.1 * static_cast<double>(k)), k});
+    if (k >= crowd_from) test::add_crowd(scene, p, crowd);
+    out.push_back(loc.update(odom[k], scene.scan(p, spec, &noise), 0.1 * static_cast<double>(k)));
   }
   return out;
 }
 
 TEST(ConvergedReport, ACrowdHidingTheWallsWithdrawsItAndChangesNothingElse) {
-  const std::vector<Step> gated = run(0.6, 20, 1000), plain = run(0.0, 20, 1000);
+  const std::vector<UpdateResult> gated = run(0.6, 20, 1000), plain = run(0.0, 20, 1000);
   ASSERT_EQ(gated.size(), plain.size());
   std::size_t withdrawn = 0, converged_before = 0;
   for (std::size_t i = 0; i < gated.size(); ++i) {
-    const UpdateResult &g = gated[i].r, &p = plain[i].r;
+    const UpdateResult &g = gated[i], &p = plain[i];
     // Only the report differs: the filter's own state follows the cluster alone.
     ASSERT_EQ(g.estimate.x, p.estimate.x) << "step " << i;
     ASSERT_EQ(g.estimate.theta, p.estimate.theta) << "step " << i;
@@ -82,13 +70,13 @@ TEST(ConvergedReport, ACrowdHidingTheWallsWithdrawsItAndChangesNothingElse) {
 
 TEST(ConvergedReport, AKidnappedRobotIsNotReportedConvergedOnItsFirstMisfittingScan) {
   // 1.5 m sideways and a quarter turn: the estimate stays where the odometry puts it.
-  const std::vector<Step> gated = run(0.6, 1000, 30, {0.0, 1.5, std::numbers::pi / 2});
-  const std::vector<Step> plain = run(0.0, 1000, 30, {0.0, 1.5, std::numbers::pi / 2});
-  ASSERT_TRUE(plain[29].r.converged);
-  ASSERT_TRUE(gated[29].r.converged);
-  EXPECT_TRUE(plain[30].r.converged) << "the cluster alone no longer says converged: the "
-                                        "test shows nothing";
-  EXPECT_FALSE(gated[30].r.converged) << "fit " << gated[30].r.fit;
+  const std::vector<UpdateResult> gated = run(0.6, 1000, 30, {0.0, 1.5, std::numbers::pi / 2});
+  const std::vector<UpdateResult> plain = run(0.0, 1000, 30, {0.0, 1.5, std::numbers::pi / 2});
+  ASSERT_TRUE(plain[29].converged);
+  ASSERT_TRUE(gated[29].converged);
+  EXPECT_TRUE(plain[30].converged) << "the cluster alone no longer says converged: the "
+                                      "test shows nothing";
+  EXPECT_FALSE(gated[30].converged) << "fit " << gated[30].fit;
 }
 
 TEST(ConvergedReport, RatioOutsideZeroToOneNamesTheField) {

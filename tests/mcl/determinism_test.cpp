@@ -143,12 +143,7 @@ TEST(Determinism, FreeSpaceDiscountSameBitsForOneAndTwoThreads) {
     // From step 20 on, eight 40 cm "people" stand 0.9-1.7 m around the robot.
     test::World scene = world;
     const Pose2& p = truth[k];
-    for (int i = 0; i < (k >= 20 ? 8 : 0); ++i) {
-      const double angle = p.theta + 2.0 * std::numbers::pi * (i + 0.3 * crowd.uniform()) / 8.0;
-      const double d = 0.9 + 0.8 * crowd.uniform();
-      const double x = p.x + d * std::cos(angle), y = p.y + d * std::sin(angle);
-      scene.rects.push_back({x - 0.2, y - 0.2, x + 0.2, y + 0.2});
-    }
+    if (k >= 20) test::add_crowd(scene, p, crowd);
     const double t = 0.1 * static_cast<double>(k);
     const UpdateResult ra = a.update(odom[k], scene.scan(p, spec, &noise_a), t);
     const UpdateResult rb = b.update(odom[k], scene.scan(p, spec, &noise_b), t);

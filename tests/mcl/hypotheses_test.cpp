@@ -120,12 +120,7 @@ Recovery run_crowded(const Glitched& g, std::uint64_t seed, std::size_t crowd_fr
   for (std::size_t k = 0; k < g.truth.size(); ++k) {
     test::World scene = map_world;
     const Pose2& p = g.truth[k];
-    for (int i = 0; i < (k >= crowd_from ? 8 : 0); ++i) {
-      const double a = p.theta + 2.0 * std::numbers::pi * (i + 0.3 * crowd.uniform()) / 8.0;
-      const double d = 0.9 + 0.8 * crowd.uniform();
-      const double x = p.x + d * std::cos(a), y = p.y + d * std::sin(a);
-      scene.rects.push_back({x - 0.2, y - 0.2, x + 0.2, y + 0.2});
-    }
+    if (k >= crowd_from) test::add_crowd(scene, p, crowd);
     const UpdateResult r = loc.update(g.odom[k], scene.scan(p, spec, &noise), 0.1 * k);
     err.push_back(test::xy_error(r.estimate, p));
   }

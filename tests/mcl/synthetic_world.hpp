@@ -157,4 +157,15 @@ inline std::vector<Pose2> noisy_odometry(const std::vector<Pose2>& truth, const 
   return testkit::noisy_odometry(truth, noise, seed, odom_start);
 }
 
+// Eight 40 cm "people" the map does not show, 0.9-1.7 m around `robot` (two draws of `rng`
+// each), added to `scene`: they hide most of the walls.
+inline void add_crowd(World& scene, const Pose2& robot, Rng& rng) {
+  for (int i = 0; i < 8; ++i) {
+    const double angle = robot.theta + 2.0 * std::numbers::pi * (i + 0.3 * rng.uniform()) / 8.0;
+    const double d = 0.9 + 0.8 * rng.uniform();
+    const double x = robot.x + d * std::cos(angle), y = robot.y + d * std::sin(angle);
+    scene.rects.push_back({x - 0.2, y - 0.2, x + 0.2, y + 0.2});
+  }
+}
+
 }  // namespace pgmcl::test

@@ -16,10 +16,17 @@ constexpr float kNudge = 1e-3f;
 // Rays marched at once: enough to overlap the lookups' latency (4 beat 1, 8 and 16 on aces).
 constexpr std::size_t kRaysInFlight = 4;
 
+// floor(v) for v within int range, without a libm call.
+float floor_in_range(float v) noexcept {
+  const auto t = static_cast<float>(static_cast<int>(v));
+  return t > v ? t - 1.0f : t;
+}
+
 // Distance along a ray with direction component u from coordinate v to the next cell edge.
 float to_next_cell(float v, float u) noexcept {
-  if (u > 0.0f) return (std::floor(v) + 1.0f - v) / u;
-  if (u < 0.0f) return (v - std::floor(v)) / -u;
+  const float edge = floor_in_range(v);
+  if (u > 0.0f) return (edge + 1.0f - v) / u;
+  if (u < 0.0f) return (v - edge) / -u;
   return std::numeric_limits<float>::infinity();
 }
 
@@ -59,6 +66,10 @@ void FreeSpace::for_each_blocked(const Pose2& pose, const PreparedBeams& beams, 
     std::size_t j;
   };
   std::array<Ray, kRaysInFlight> rays{};
+  // Every ray's first sample is the sensor's cell: looked up once, and where it is clear of
+  // walls, every ray starts with the sphere step from it.
+  const std::uint8_t at_sensor = clearance_at(sx, sy);
+  const float first_step = at_sensor >= 3 ? static_cast<float>(at_sensor) - 1.5f : 0.0f;
   std::size_t next = 0;  // the next beam to start
   const auto start = [&](Ray& ray) {
     for (; next < beams.size(); ++next) {
@@ -68,7 +79,12 @@ void FreeSpace::for_each_blocked(const Pose2& pose, const PreparedBeams& beams, 
       const float length = std::sqrt(dx * dx + dy * dy);
       const float stop = length - ray_margin_;
       if (!(stop > 0.0f)) continue;
-      ray = {dx / length, dy / length, 0.0f, stop, next++};
+      if (at_sensor == 0) {
+        on_blocked(next);
+        continue;
+      }
+      if (!(first_step < stop)) continue;
+      ray = {dx / length, dy / length, first_step, stop, next++};
       return true;
     }
     return false;
@@ -79,7 +95,7 @@ void FreeSpace::for_each_blocked(const Pose2& pose, const PreparedBeams& beams, 
     for (std::size_t r = 0; r < flying;) {
       Ray& ray = rays[r];
       const float x = sx + ray.ux * ray.t, y = sy + ray.uy * ray.t;
-      const std::uint8_t k = clearance_at(x, y);
+      const std::uint8_t k = clearance_near(x, y);  // the sensor is on the map
       bool landed = k == 0;
       if (landed) {
         on_blocked(ray.j);

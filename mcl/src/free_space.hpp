@@ -37,9 +37,15 @@ class FreeSpace {
   [[nodiscard]] std::size_t bytes() const noexcept { return clearance_.size(); }
 
  private:
-  // Inline: the ray march's inner loop calls it some twenty times per beam.
   [[nodiscard]] std::uint8_t clearance_at(float col, float row) const noexcept {
-    const int c = maps::floor_to_cell(col), r = maps::floor_to_cell(row);
+    return clearance_in(maps::floor_to_cell(col), maps::floor_to_cell(row));
+  }
+  // Inline: the ray march's inner loop calls it some ten times per beam. For points within
+  // a scan's reach of a cell on the map, where floor_to_cell's clamps never act.
+  [[nodiscard]] std::uint8_t clearance_near(float col, float row) const noexcept {
+    return clearance_in(maps::floor_to_cell_unclamped(col), maps::floor_to_cell_unclamped(row));
+  }
+  [[nodiscard]] std::uint8_t clearance_in(int c, int r) const noexcept {
     if (c < 0 || r < 0 || c >= width_ || r >= height_) return 0;  // off the map: never seen
     return clearance_[static_cast<std::size_t>(r) * static_cast<std::size_t>(width_) +
                       static_cast<std::size_t>(c)];

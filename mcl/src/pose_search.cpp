@@ -199,7 +199,9 @@ void PoseSearch::prepare_angles(const PoseSearchQuery& q, int leaf) {
           wrap_angle(-std::numbers::pi + kTwoPi * (static_cast<double>(i) + 0.5) / n));
   }
   // Node corners are whole cells, so floor((col + x) / 2^k) = (col + floor(x)) >> k: the
-  // rotated endpoints are floored once here and bound() needs only integer steps.
+  // rotated endpoints are floored once here and bound() needs only integer steps. They lie
+  // within the scan's reach, where the clamps of floor_to_cell never act: without them the
+  // same cells come out of a loop GCC vectorises (a sweep rotates hundreds of headings).
   const std::size_t m = bx_.size();
   rx_.resize(angles_.size() * m);
   ry_.resize(angles_.size() * m);
@@ -207,8 +209,8 @@ void PoseSearch::prepare_angles(const PoseSearchQuery& q, int leaf) {
     const float c = static_cast<float>(std::cos(angles_[a]));
     const float s = static_cast<float>(std::sin(angles_[a]));
     for (std::size_t j = 0; j < m; ++j) {
-      rx_[a * m + j] = maps::floor_to_cell(c * bx_[j] - s * by_[j]);
-      ry_[a * m + j] = maps::floor_to_cell(s * bx_[j] + c * by_[j]);
+      rx_[a * m + j] = maps::floor_to_cell_unclamped(c * bx_[j] - s * by_[j]);
+      ry_[a * m + j] = maps::floor_to_cell_unclamped(s * bx_[j] + c * by_[j]);
     }
   }
 }

@@ -168,13 +168,13 @@ void Localizer::reset_after_init() {
   last_ = r;
 }
 
-void Localizer::seed_particles(const detail::SeedRequest& seed) {
+std::size_t Localizer::seed_particles(const detail::SeedRequest& seed) {
   // The `count` lightest particles (ties by index), an equal share around each pose, at
   // the uniform weight, in free space only (a few tries; near a tiny free region a
   // particle stays put).
   const std::size_t n = p_.size();
   const std::size_t count = std::min(seed.count, n);
-  if (count == 0 || seed.poses.empty()) return;
+  if (count == 0 || seed.poses.empty()) return 0;
   ws_.seed_victims.resize(n);
   std::iota(ws_.seed_victims.begin(), ws_.seed_victims.end(), 0u);
   std::nth_element(ws_.seed_victims.begin(),
@@ -199,6 +199,7 @@ void Localizer::seed_particles(const detail::SeedRequest& seed) {
       break;
     }
   }
+  return count;
 }
 
 ParticlesView Localizer::particles() const noexcept {

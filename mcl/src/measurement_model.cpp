@@ -83,6 +83,14 @@ void MeasurementModel::score_parallel(std::span<const float> x, std::span<const 
   });
 }
 
+void MeasurementModel::score_block(std::span<const float> x, std::span<const float> y,
+                                   std::span<const float> theta, std::size_t begin, std::size_t end,
+                                   std::span<std::uint32_t> sum_q) const noexcept {
+  maps::with_kernel(*field_, beams_.arrays(), fit_q_, [&](const auto& k) {
+    score_range(k, x.data(), y.data(), theta.data(), begin, end, sum_q.data());
+  });
+}
+
 PoseScore MeasurementModel::score_pose(double x, double y, double theta) const noexcept {
   PoseScore out;
   maps::with_kernel(*field_, beams_.arrays(), fit_q_, [&](const auto& k) {

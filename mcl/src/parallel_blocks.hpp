@@ -40,4 +40,29 @@ void for_each_block(std::size_t blocks, int threads, Fn&& fn) {
   for (std::size_t b = 0; b < blocks; ++b) fn(b);
 }
 
+/// Runs side() on one thread of a team while the others work through fn(block) for every
+/// block, and that thread joins them once side() returns; threads == 1: side(), then the
+/// blocks in order. side() must touch nothing the blocks read or write.
+template <class Side, class Fn>
+void alongside(int threads, Side&& side, std::size_t blocks, Fn&& fn) {
+#ifdef _OPENMP
+  if (threads != 1) {
+    const int nt = threads > 0 ? threads : omp_get_max_threads();
+    const auto nb = static_cast<std::ptrdiff_t>(blocks);
+#pragma omp parallel num_threads(nt)
+    {
+#pragma omp single nowait
+      side();
+#pragma omp for schedule(dynamic, 1) nowait
+      for (std::ptrdiff_t b = 0; b < nb; ++b) fn(static_cast<std::size_t>(b));
+    }
+    return;
+  }
+#else
+  (void)threads;
+#endif
+  side();
+  for (std::size_t b = 0; b < blocks; ++b) fn(b);
+}
+
 }  // namespace pgmcl::detail

@@ -160,6 +160,48 @@ TEST(Determinism, FreeSpaceDiscountSameBitsForOneAndTwoThreads) {
   std::printf("  the discount ran on %zu of %zu updates\n", discounted, steps);
 }
 
+// With a team the particles are scored while the hypotheses' search runs, and those a
+// switch redraws are scored again (Localizer::measurement_update): an odometry glitch that
+// the tracker absorbs by a switch leaves the serial reference's bits.
+TEST(Determinism, SwitchSameBitsForOneAndTwoThreads) {
+  const test::World world = test::make_room(0.05);
+  const auto truth = test::loop_trajectory(0.5, 15 * std::numbers::pi / 180.0);
+  auto odom = test::noisy_odometry(truth, MotionNoise{}, 3);
+  // From step 20 on, the odometry is seen through a 1 m, 40 deg glitch.
+  const std::size_t at = 20;
+  const Pose2 base = odom[at - 1], glitch{1.0, 0.0, 40 * std::numbers::pi / 180.0};
+  for (std::size_t k = at; k < odom.size(); ++k)
+    odom[k] = base.compose(glitch).compose(base.between(odom[k]));
+  test::ScanSpec spec;
+  spec.noise_sigma = 0.01;
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  cov.diagonal() << 0.01, 0.01, 0.003;
+  Localizer a(world.grid, tracking_config(1)), b(world.grid, tracking_config(2));
+  a.set_pose(truth[0], cov);
+  b.set_pose(truth[0], cov);
+  Rng noise_a(9), noise_b(9);
+  std::size_t switched = 0;
+  double last_error = 0.0;
+  const std::size_t steps = std::min<std::size_t>(40, truth.size());
+  for (std::size_t k = 0; k < steps; ++k) {
+    const double t = 0.1 * static_cast<double>(k);
+    const UpdateResult ra = a.update(odom[k], world.scan(truth[k], spec, &noise_a), t);
+    const UpdateResult rb = b.update(odom[k], world.scan(truth[k], spec, &noise_b), t);
+    switched += ra.switched && rb.switched ? 1 : 0;
+    last_error = std::hypot(ra.estimate.x - truth[k].x, ra.estimate.y - truth[k].y);
+    ASSERT_EQ(ra.estimate.x, rb.estimate.x) << "step " << k;
+    ASSERT_EQ(ra.estimate.theta, rb.estimate.theta) << "step " << k;
+    ASSERT_EQ(ra.n_eff, rb.n_eff) << "step " << k;
+  }
+  EXPECT_GT(switched, 0u) << "the glitch no longer makes the tracker switch";
+  EXPECT_LT(last_error, 0.2) << "the glitch was not absorbed";
+  const ParticlesView pa = a.particles(), pb = b.particles();
+  EXPECT_TRUE(same_bits(pa.x, pb.x));
+  ASSERT_EQ(pa.weight.size(), pb.weight.size());
+  EXPECT_EQ(0, std::memcmp(pa.weight.data(), pb.weight.data(), pa.weight.size() * sizeof(double)));
+  std::printf("  the tracker switched on %zu of %zu updates\n", switched, steps);
+}
+
 // A different seed gives a different particle set (the seed is really used).
 TEST(Determinism, DifferentSeedDifferentParticles) {
   const test::World world = test::make_room(0.05);

@@ -74,6 +74,11 @@ class MeasurementModel {
   void score_parallel(std::span<const float> x, std::span<const float> y,
                       std::span<const float> theta, std::span<std::uint32_t> sum_q,
                       int threads) const noexcept;
+  /// score_serial() for particles [begin, end) only (sum_q indexed like x): a unit of work
+  /// for a caller that schedules the particles itself.
+  void score_block(std::span<const float> x, std::span<const float> y, std::span<const float> theta,
+                   std::size_t begin, std::size_t end,
+                   std::span<std::uint32_t> sum_q) const noexcept;
   /// One map-local pose, also counting beams that fell on background.
   [[nodiscard]] PoseScore score_pose(double x, double y, double theta) const noexcept;
 

@@ -23,10 +23,12 @@ enum class SkipReason : std::uint8_t {
 struct UpdateTimings {
   double motion_ms = 0.0;
   double measurement_ms = 0.0;  ///< beam preparation + scoring + normalisation
-  double hypotheses_ms = 0.0;   ///< of measurement_ms: competing hypotheses (HypothesesConfig)
-  double free_space_ms = 0.0;   ///< of measurement_ms: HypothesesConfig::free_space_weights
-  double resample_ms = 0.0;     ///< KLD sizing + resampling + random injection
-  double estimate_ms = 0.0;     ///< mean, covariance, clustering
+  /// Of measurement_ms: competing hypotheses (HypothesesConfig). While tracking with more
+  /// than one thread, the particles are scored alongside, so the two overlap.
+  double hypotheses_ms = 0.0;
+  double free_space_ms = 0.0;  ///< of measurement_ms: HypothesesConfig::free_space_weights
+  double resample_ms = 0.0;    ///< KLD sizing + resampling + random injection
+  double estimate_ms = 0.0;    ///< mean, covariance, clustering
   double total_ms = 0.0;
 };
 

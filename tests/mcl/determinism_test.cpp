@@ -71,6 +71,25 @@ bool same_bits(std::span<const float> a, std::span<const float> b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
 }
 
+// The serial reference and a team of two, both set tightly on `start`.
+struct SerialAndTeam {
+  Localizer serial, team;
+  SerialAndTeam(const maps::OccupancyGrid& grid, const Pose2& start)
+      : serial(grid, tracking_config(1)), team(grid, tracking_config(2)) {
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    cov.diagonal() << 0.01, 0.01, 0.003;
+    serial.set_pose(start, cov);
+    team.set_pose(start, cov);
+  }
+  void expect_same_particles() const {
+    const ParticlesView pa = serial.particles(), pb = team.particles();
+    EXPECT_TRUE(same_bits(pa.x, pb.x));
+    ASSERT_EQ(pa.weight.size(), pb.weight.size());
+    EXPECT_EQ(0,
+              std::memcmp(pa.weight.data(), pb.weight.data(), pa.weight.size() * sizeof(double)));
+  }
+};
+
 // Same seed -> same trajectory and particles, bit for bit, for 1 and 2 threads.
 TEST(Determinism, SameSeedSameTrajectoryForOneAndTwoThreads) {
   const test::World world = test::make_room(0.05);
@@ -131,11 +150,8 @@ TEST(Determinism, FreeSpaceDiscountSameBitsForOneAndTwoThreads) {
   const auto odom = test::noisy_odometry(truth, MotionNoise{}, 3);
   test::ScanSpec spec;
   spec.noise_sigma = 0.01;
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  cov.diagonal() << 0.01, 0.01, 0.003;
-  Localizer a(world.grid, tracking_config(1)), b(world.grid, tracking_config(2));
-  a.set_pose(truth[0], cov);
-  b.set_pose(truth[0], cov);
+  SerialAndTeam both(world.grid, truth[0]);
+  Localizer &a = both.serial, &b = both.team;
   Rng noise_a(9), noise_b(9), crowd(11);
   std::size_t discounted = 0;
   const std::size_t steps = std::min<std::size_t>(60, truth.size());
@@ -153,10 +169,7 @@ TEST(Determinism, FreeSpaceDiscountSameBitsForOneAndTwoThreads) {
     ASSERT_EQ(ra.n_eff, rb.n_eff) << "step " << k;
   }
   EXPECT_GT(discounted, 0u) << "the crowd no longer makes the discount run";
-  const ParticlesView pa = a.particles(), pb = b.particles();
-  EXPECT_TRUE(same_bits(pa.x, pb.x));
-  ASSERT_EQ(pa.weight.size(), pb.weight.size());
-  EXPECT_EQ(0, std::memcmp(pa.weight.data(), pb.weight.data(), pa.weight.size() * sizeof(double)));
+  both.expect_same_particles();
   std::printf("  the discount ran on %zu of %zu updates\n", discounted, steps);
 }
 
@@ -174,11 +187,8 @@ TEST(Determinism, SwitchSameBitsForOneAndTwoThreads) {
     odom[k] = base.compose(glitch).compose(base.between(odom[k]));
   test::ScanSpec spec;
   spec.noise_sigma = 0.01;
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  cov.diagonal() << 0.01, 0.01, 0.003;
-  Localizer a(world.grid, tracking_config(1)), b(world.grid, tracking_config(2));
-  a.set_pose(truth[0], cov);
-  b.set_pose(truth[0], cov);
+  SerialAndTeam both(world.grid, truth[0]);
+  Localizer &a = both.serial, &b = both.team;
   Rng noise_a(9), noise_b(9);
   std::size_t switched = 0;
   double last_error = 0.0;
@@ -195,10 +205,7 @@ TEST(Determinism, SwitchSameBitsForOneAndTwoThreads) {
   }
   EXPECT_GT(switched, 0u) << "the glitch no longer makes the tracker switch";
   EXPECT_LT(last_error, 0.2) << "the glitch was not absorbed";
-  const ParticlesView pa = a.particles(), pb = b.particles();
-  EXPECT_TRUE(same_bits(pa.x, pb.x));
-  ASSERT_EQ(pa.weight.size(), pb.weight.size());
-  EXPECT_EQ(0, std::memcmp(pa.weight.data(), pb.weight.data(), pa.weight.size() * sizeof(double)));
+  both.expect_same_particles();
   std::printf("  the tracker switched on %zu of %zu updates\n", switched, steps);
 }
 

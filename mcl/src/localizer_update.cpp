@@ -231,9 +231,10 @@ bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, Up
     } else {
       follow_hypotheses();
     }
-    const std::size_t redrawn = seed_particles(h.seed);
-    if (scored && redrawn > 0) rescore(std::span(ws_.seed_victims).first(redrawn));
-    r.seeded = h.seed.poses.empty() ? 0 : std::min(h.seed.count, n);
+    r.seeded = seed_particles(h.seed);
+    if (scored)  // the team scored the redrawn particles at their old poses
+      for (const std::uint32_t i : std::span(ws_.seed_victims).first(r.seeded))
+        model_.score_block(p_.x, p_.y, p_.theta, i, i + 1, ws_.beam_sums);
     r.switched = h.switched;
     r.searched = h.searched;
     r.competitors = h.competitors;
@@ -294,20 +295,6 @@ bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, Up
   limit_probation_weight(prediction);
   r.n_eff = effective_sample_size(p_.w);
   return true;
-}
-
-void Localizer::rescore(std::span<const std::uint32_t> which) {
-  ws_.rescore_x.clear();
-  ws_.rescore_y.clear();
-  ws_.rescore_theta.clear();
-  for (const std::uint32_t i : which) {
-    ws_.rescore_x.push_back(p_.x[i]);
-    ws_.rescore_y.push_back(p_.y[i]);
-    ws_.rescore_theta.push_back(p_.theta[i]);
-  }
-  ws_.rescore_sums.resize(which.size());
-  model_.score_serial(ws_.rescore_x, ws_.rescore_y, ws_.rescore_theta, ws_.rescore_sums);
-  for (std::size_t k = 0; k < which.size(); ++k) ws_.beam_sums[which[k]] = ws_.rescore_sums[k];
 }
 
 void Localizer::update_recovery_averages(double w_avg, UpdateResult& r) noexcept {

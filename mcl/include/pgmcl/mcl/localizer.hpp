@@ -103,8 +103,6 @@ class Localizer {
   /// Redraws the `count` lightest particles around `seed.poses`. Returns how many it
   /// redrew: the first ones of ws_.seed_victims.
   std::size_t seed_particles(const detail::SeedRequest& seed);
-  /// Scores particles `which` again into ws_.beam_sums.
-  void rescore(std::span<const std::uint32_t> which);
   void update_recovery_averages(double w_avg, UpdateResult& r) noexcept;
   /// Withdraws r.converged while the scan fits the estimate far worse than usual.
   void confirm_by_fit(UpdateResult& r) noexcept;
@@ -144,14 +142,12 @@ class Localizer {
     std::vector<float> next_x, next_y, next_theta;  // the resampled set, swapped in
     std::vector<float> injected_x, injected_y, injected_theta;  // poses injected this time
     std::vector<std::uint8_t> next_probation;
-    std::vector<double> log_w_probation, log_w_tracked;      // limit_probation_weight()
-    std::vector<std::uint32_t> seed_victims;                 // seed_particles()
-    std::vector<float> rescore_x, rescore_y, rescore_theta;  // rescore()
-    std::vector<std::uint32_t> rescore_sums;
-    std::vector<double> estimate_w;        // compute_estimate(): untempered
-    std::vector<std::uint32_t> by_weight;  // discount_blocked_readings()
-    std::vector<double> discounts;         // ... per checked particle, nats
-    struct BlockedReadings {               // ... one particle's blocked beams, per parallel slice
+    std::vector<double> log_w_probation, log_w_tracked;  // limit_probation_weight()
+    std::vector<std::uint32_t> seed_victims;             // seed_particles()
+    std::vector<double> estimate_w;                      // compute_estimate(): untempered
+    std::vector<std::uint32_t> by_weight;                // discount_blocked_readings()
+    std::vector<double> discounts;                       // ... per checked particle, nats
+    struct BlockedReadings {  // ... one particle's blocked beams, per parallel slice
       std::vector<std::uint32_t> indices;
       PreparedBeams beams;
     };

@@ -11,6 +11,8 @@ namespace {
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 // bound() compares its partial sum with the limit every this many beams (a power of two).
 constexpr std::size_t kBoundCheck = 8;
+// Cells of padding beyond the range model's support (a sensor mounted off the base).
+constexpr double kPadMarginCells = 64.0;
 
 // Minimum over the fine cells [C * s, C * s + 2 s) of one axis, for C in [-1, ceil(n / s)),
 // stored at C + 1; empty windows read `background`.
@@ -127,6 +129,24 @@ PoseSearch::PoseSearch(const maps::LikelihoodField& field,
                       static_cast<std::size_t>(c >> 1)] = 1;
     levels_.push_back(std::move(lv));
   }
+  // Padding: nodes lie within the root blocks, which reach past the map by less than a
+  // root block, and a scan's rotated endpoints (floored) within padded_reach_ + 1 cells of
+  // a node's corner. The range model's support bounds every reading the filter scores.
+  padded_reach_ = static_cast<float>(std::ceil(field.model().params().max_range / resolution_) +
+                                     kPadMarginCells);
+  const int root_side = 1 << levels_.back().shift;
+  for (Level& lv : levels_) {
+    const int s = 1 << lv.shift;
+    lv.pad = (static_cast<int>(padded_reach_) + 1 + root_side) / s + 2;
+    lv.stride = lv.width + 2 * lv.pad;
+    std::vector<std::uint8_t> padded(
+        static_cast<std::size_t>(lv.stride) * static_cast<std::size_t>(lv.height + 2 * lv.pad),
+        background_);
+    for (int r = 0; r < lv.height; ++r)
+      std::copy_n(lv.cost.begin() + static_cast<std::ptrdiff_t>(r) * lv.width, lv.width,
+                  padded.begin() + (r + lv.pad) * lv.stride + lv.pad);
+    lv.cost = std::move(padded);
+  }
   const Level& root = levels_.back();
   for (int r = 0; r < root.free_height; ++r)
     for (int c = 0; c < root.free_width; ++c)
@@ -164,6 +184,9 @@ bool PoseSearch::set_scan(const PreparedBeams& beams) {
     ranges_[j] = std::hypot(bx_[j], by_[j]);
     ++j;
   }
+  // A rotated endpoint's coordinates lie within its range.
+  padded_ =
+      std::all_of(ranges_.begin(), ranges_.end(), [&](float r) { return r <= padded_reach_; });
   if (k == 0) return false;
   // An endpoint at range r moves r * step between neighbouring headings: keep that within
   // a leaf for 90 % of the beams.
@@ -215,23 +238,28 @@ void PoseSearch::prepare_angles(const PoseSearchQuery& q, int leaf) {
   }
 }
 
+template <bool kPadded>
 std::uint32_t PoseSearch::bound(const Level& lv, std::int32_t col, std::int32_t row,
                                 std::size_t angle, std::uint64_t limit) const noexcept {
   const std::size_t m = bx_.size();
   const std::int32_t* rx = rx_.data() + angle * m;
   const std::int32_t* ry = ry_.data() + angle * m;
   const int shift = lv.shift;
+  const std::ptrdiff_t stride = lv.stride;
+  const std::uint8_t* origin = lv.origin() + stride + 1;  // pooled index C + 1 for C
   std::uint32_t sum = 0;
   for (std::size_t j = 0; j < m; ++j) {
     // Costs are not negative: a partial sum at the limit prunes the node already.
     if ((j & (kBoundCheck - 1)) == 0 && sum >= limit) return sum;
-    const int c = ((col + rx[j]) >> shift) + 1;  // arithmetic shift: floor division
-    const int r = ((row + ry[j]) >> shift) + 1;
-    const bool inside = static_cast<unsigned>(c) < static_cast<unsigned>(lv.width) &&
-                        static_cast<unsigned>(r) < static_cast<unsigned>(lv.height);
-    sum += inside ? lv.cost[static_cast<std::size_t>(r) * static_cast<std::size_t>(lv.width) +
-                            static_cast<std::size_t>(c)]
-                  : background_;
+    const int c = (col + rx[j]) >> shift;  // arithmetic shift: floor division
+    const int r = (row + ry[j]) >> shift;
+    if constexpr (kPadded) {
+      sum += origin[r * stride + c];
+    } else {
+      const bool inside = static_cast<unsigned>(c + 1) < static_cast<unsigned>(lv.width) &&
+                          static_cast<unsigned>(r + 1) < static_cast<unsigned>(lv.height);
+      sum += inside ? origin[r * stride + c] : background_;
+    }
   }
   return sum;
 }
@@ -257,9 +285,7 @@ std::uint32_t PoseSearch::pooled_cost(double x, double y, double theta) const {
     const int row = maps::floor_to_cell((fr + s * bx_[j] + c * by_[j]) * inv) + 1;
     const bool inside = static_cast<unsigned>(col) < static_cast<unsigned>(lv.width) &&
                         static_cast<unsigned>(row) < static_cast<unsigned>(lv.height);
-    sum += inside ? lv.cost[static_cast<std::size_t>(row) * static_cast<std::size_t>(lv.width) +
-                            static_cast<std::size_t>(col)]
-                  : background_;
+    sum += inside ? lv.origin()[row * lv.stride + col] : background_;
   }
   return sum;
 }
@@ -309,7 +335,8 @@ PoseSearchResult PoseSearch::search(const PoseSearchQuery& q) {
   const std::uint64_t cap = static_cast<std::uint64_t>(q.max_cost) + 1;  // prune at >= cap
   auto add_root = [&](std::int32_t col, std::int32_t row) {
     for (std::size_t a = 0; a < angles_.size(); ++a) {
-      const std::uint32_t cost = bound(root, col, row, a, cap);
+      const std::uint32_t cost =
+          padded_ ? bound<true>(root, col, row, a, cap) : bound<false>(root, col, row, a, cap);
       res.lookups += per_node;
       if (cost < cap)
         stack_.push_back({col, row, cost, static_cast<std::uint16_t>(a),
@@ -364,7 +391,8 @@ PoseSearchResult PoseSearch::search(const PoseSearchQuery& q) {
       for (int dc = 0; dc < 2; ++dc) {
         const std::int32_t col = n.col + dc * s, row = n.row + dr * s;
         if (!has_free(lv, col, row) || !overlaps(col, row, s)) continue;
-        const std::uint32_t cost = bound(lv, col, row, n.angle, limit);
+        const std::uint32_t cost = padded_ ? bound<true>(lv, col, row, n.angle, limit)
+                                           : bound<false>(lv, col, row, n.angle, limit);
         res.lookups += per_node;
         if (cost < limit)
           children[k++] = {col, row, cost, n.angle, static_cast<std::uint8_t>(n.level - 1u)};

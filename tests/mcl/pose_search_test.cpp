@@ -53,17 +53,9 @@ struct Fixture {
   }
 };
 
-TEST(PoseSearch, BranchAndBoundFindsTheExhaustiveOptimum) {
-  Fixture f;
-  const Pose2 robot{3.1, 4.3, 0.4};
-  PoseSearch search = f.search_from(robot);
-  PoseSearchQuery q;
-  q.max_candidates = 1;
-  const PoseSearchResult best = search.search(q);
-  ASSERT_EQ(best.candidates.size(), 1u);
-
-  // Exhaustive: every leaf with free space at every heading the search tried, scored by
-  // pooled_cost at the leaf centre (the same pooled table and rounding).
+// Exhaustive: every leaf with free space at every heading the search tries, scored by
+// pooled_cost at the leaf centre (the same pooled table and rounding, with edge checks).
+std::uint32_t exhaustive_best(const Fixture& f, const PoseSearch& search) {
   std::uint32_t brute = std::numeric_limits<std::uint32_t>::max();
   const double leaf = search.leaf_size();
   const int n_angles = static_cast<int>(std::ceil(2.0 * std::numbers::pi / search.angle_step()));
@@ -84,12 +76,43 @@ TEST(PoseSearch, BranchAndBoundFindsTheExhaustiveOptimum) {
         brute = std::min(brute, search.pooled_cost((c + 0.5) * leaf, (r + 0.5) * leaf, th));
       }
     }
-  EXPECT_EQ(best.candidates[0].cost, brute);
+  return brute;
+}
+
+TEST(PoseSearch, BranchAndBoundFindsTheExhaustiveOptimum) {
+  Fixture f;
+  const Pose2 robot{3.1, 4.3, 0.4};
+  PoseSearch search = f.search_from(robot);
+  PoseSearchQuery q;
+  q.max_candidates = 1;
+  const PoseSearchResult best = search.search(q);
+  ASSERT_EQ(best.candidates.size(), 1u);
+  EXPECT_EQ(best.candidates[0].cost, exhaustive_best(f, search));
   // The optimum lies at the true pose (the room is asymmetric): a leaf's pooled window
   // spans two leaves, so within 1.5 leaves and a heading step.
+  const double leaf = search.leaf_size();
   EXPECT_NEAR(best.candidates[0].x, robot.x, 1.5 * leaf);
   EXPECT_NEAR(best.candidates[0].y, robot.y, 1.5 * leaf);
   EXPECT_LT(std::abs(wrap_angle(best.candidates[0].theta - robot.theta)), search.angle_step());
+}
+
+TEST(PoseSearch, AScanPastThePaddedReachIsBoundedWithEdgeChecks) {
+  // The pyramid's levels are padded for readings within the range model's support (30 m
+  // here); a reading from farther (a sensor mounted far off the base) takes the checked
+  // path, which must find the same optimum, the far endpoint reading background.
+  Fixture f;
+  f.prepare({3.1, 4.3, 0.4});
+  PreparedBeams beams = f.model.beams();
+  beams.ex[0] = 800.0f;  // cells: 40 m ahead; the first beam is always among those searched
+  beams.ey[0] = 0.0f;
+  beams.reach = std::max(beams.reach, 800.0f);
+  PoseSearch search(*f.field, f.free_cells);
+  ASSERT_TRUE(search.set_scan(beams));
+  PoseSearchQuery q;
+  q.max_candidates = 1;
+  const PoseSearchResult best = search.search(q);
+  ASSERT_EQ(best.candidates.size(), 1u);
+  EXPECT_EQ(best.candidates[0].cost, exhaustive_best(f, search));
 }
 
 TEST(PoseSearch, CandidatesAreDistinctAndSortedAndRespectTheWindow) {

@@ -100,9 +100,17 @@ class PoseSearch {
   struct Level {
     int shift = 0;              // 2^shift cells per node side
     int width = 0, height = 0;  // pooled dims, index C + 1 for C in [-1, ceil(W / 2^k))
+    // Row-major with `pad` nodes of background on every side: bound() reads any node a
+    // scan within the padded reach lands on without checking the edges.
     std::vector<std::uint8_t> cost;
+    int pad = 0;
+    std::ptrdiff_t stride = 0;            // width + 2 pad
     int free_width = 0, free_height = 0;  // aligned dims ceil(W / 2^k)
     std::vector<std::uint8_t> has_free;
+    /// The cost at pooled index (c, r), for c in [-pad, width + pad), r likewise.
+    [[nodiscard]] const std::uint8_t* origin() const noexcept {
+      return cost.data() + static_cast<std::ptrdiff_t>(pad) * stride + pad;
+    }
   };
   struct Node {
     std::int32_t col = 0, row = 0;  // lower corner, fine cells
@@ -111,7 +119,9 @@ class PoseSearch {
     std::uint8_t level = 0;
   };
 
-  /// The node's pooled cost, or a partial sum of it once that reaches `limit`.
+  /// The node's pooled cost, or a partial sum of it once that reaches `limit`. kPadded:
+  /// the scan lies within the levels' padding (padded_reach_).
+  template <bool kPadded>
   [[nodiscard]] std::uint32_t bound(const Level& lv, std::int32_t col, std::int32_t row,
                                     std::size_t angle, std::uint64_t limit) const noexcept;
   void prepare_angles(const PoseSearchQuery& q, int leaf);
@@ -129,6 +139,8 @@ class PoseSearch {
   PoseSearchConfig cfg_;
   // Scan: base-frame endpoints in cells.
   std::vector<float> bx_, by_;
+  float padded_reach_ = 0.0f;  // cells: a scan whose ranges are all within it ...
+  bool padded_ = false;        // ... this one, reads the levels unchecked
   std::vector<float> ranges_;  // set_scan(): the endpoints' ranges, for the angle step
   double angle_step_ = 0.0;
   // Per query: headings and rotated endpoints (angle-major).

@@ -131,9 +131,12 @@ PoseSearch::PoseSearch(const maps::LikelihoodField& field,
   }
   // Padding: nodes lie within the root blocks, which reach past the map by less than a
   // root block, and a scan's rotated endpoints (floored) within padded_reach_ + 1 cells of
-  // a node's corner. The range model's support bounds every reading the filter scores.
-  padded_reach_ = static_cast<float>(std::ceil(field.model().params().max_range / resolution_) +
-                                     kPadMarginCells);
+  // a node's corner. The range model's support bounds every reading the filter scores; on
+  // a map smaller than that, its diagonal bounds the padding (memory), and the rare scan
+  // that reaches farther takes the checked path.
+  const double reach_cells = std::min(field.model().params().max_range / resolution_,
+                                      std::hypot(static_cast<double>(width_), height_));
+  padded_reach_ = static_cast<float>(std::ceil(reach_cells) + kPadMarginCells);
   const int root_side = 1 << levels_.back().shift;
   for (Level& lv : levels_) {
     const int s = 1 << lv.shift;

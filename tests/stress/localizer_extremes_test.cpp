@@ -7,8 +7,10 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -120,39 +122,54 @@ TEST(StressExtremes, OneParticleWithKldAndRecovery) {
 TEST(StressExtremes, MillionParticles) {
   const Room room = make_room(8.0, 6.0, 0.05);
   const Scanner scanner(room.grid, 0.01);
-  LocalizerConfig cfg;
-  cfg.filter.particles = cfg.filter.global_particles = kMillion;
-  cfg.filter.kld.enabled = false;
-  cfg.filter.resample_threshold = 1.0;  // resample every update: all scratch in use
-  cfg.threads = 0;
-  const auto before = heap_in_use();
-  Localizer loc(room.grid, cfg);
   const Pose2 truth{3.0, 3.0, 0.4};
-  loc.set_pose(truth, diag_cov(0.3, 10 * kDeg));
-  Rng rng(8);
-  UpdateResult r = loc.update({}, scanner.scan(truth, rng), 0.0);
-  r = loc.update({0.12, 0.0, 0.0}, scanner.scan(truth.compose({0.12, 0.0, 0.0}), rng), 0.1);
   const Pose2 moved = truth.compose({0.12, 0.0, 0.0});
-  const auto after = heap_in_use();
-  ASSERT_TRUE(r.measured());
-  EXPECT_TRUE(r.resampled);
-  EXPECT_EQ(r.particles, kMillion);
-  EXPECT_TRUE(result_finite(r));
-  EXPECT_TRUE(weights_finite(loc.particles()));
-  EXPECT_GE(r.n_eff, 1.0);
-  EXPECT_LE(r.n_eff, static_cast<double>(kMillion));
-  EXPECT_LT(std::hypot(r.estimate.x - moved.x, r.estimate.y - moved.y), 0.1);
-  const ParticlesView pv = loc.particles();
-  const std::size_t soa = pv.x.size_bytes() + pv.y.size_bytes() + pv.theta.size_bytes() +
-                          pv.weight.size_bytes() + pv.size() * sizeof(double);  // + log_w
-  EXPECT_EQ(soa, kMillion * (3 * sizeof(float) + 2 * sizeof(double)));
-  std::cout << "  " << kMillion << " particles: SoA " << soa
-            << " bytes = " << static_cast<double>(soa) / kMillion << " bytes/particle";
-  if (before && after) {
-    const double per = (static_cast<double>(*after) - static_cast<double>(*before) -
-                        static_cast<double>(loc.field().stats().bytes)) /
-                       static_cast<double>(kMillion);
-    std::cout << "; whole filter incl. scratch " << per << " bytes/particle";
+  // A filter of `n` particles through two updates; `heap`: what it holds on the heap
+  // then (the field, the search pyramid and the other map-sized parts included).
+  const auto run = [&](std::size_t n, std::optional<std::size_t>& heap,
+                       const std::function<void(const Localizer&, const UpdateResult&)>& check) {
+    LocalizerConfig cfg;
+    cfg.filter.particles = cfg.filter.global_particles = n;
+    cfg.filter.kld.enabled = false;
+    cfg.filter.resample_threshold = 1.0;  // resample every update: all scratch in use
+    cfg.threads = 0;
+    const auto before = heap_in_use();
+    Localizer loc(room.grid, cfg);
+    loc.set_pose(truth, diag_cov(0.3, 10 * kDeg));
+    Rng rng(8);
+    UpdateResult r = loc.update({}, scanner.scan(truth, rng), 0.0);
+    r = loc.update({0.12, 0.0, 0.0}, scanner.scan(moved, rng), 0.1);
+    const auto after = heap_in_use();
+    if (before && after) heap = *after - *before;
+    check(loc, r);
+  };
+  std::optional<std::size_t> heap_million, heap_thousand;
+  run(kMillion, heap_million, [&](const Localizer& loc, const UpdateResult& r) {
+    ASSERT_TRUE(r.measured());
+    EXPECT_TRUE(r.resampled);
+    EXPECT_EQ(r.particles, kMillion);
+    EXPECT_TRUE(result_finite(r));
+    EXPECT_TRUE(weights_finite(loc.particles()));
+    EXPECT_GE(r.n_eff, 1.0);
+    EXPECT_LE(r.n_eff, static_cast<double>(kMillion));
+    EXPECT_LT(std::hypot(r.estimate.x - moved.x, r.estimate.y - moved.y), 0.1);
+    const ParticlesView pv = loc.particles();
+    const std::size_t soa = pv.x.size_bytes() + pv.y.size_bytes() + pv.theta.size_bytes() +
+                            pv.weight.size_bytes() + pv.size() * sizeof(double);  // + log_w
+    EXPECT_EQ(soa, kMillion * (3 * sizeof(float) + 2 * sizeof(double)));
+    std::cout << "  " << kMillion << " particles: SoA " << soa
+              << " bytes = " << static_cast<double>(soa) / kMillion << " bytes/particle";
+  });
+  constexpr std::size_t kThousand = 1000;
+  run(kThousand, heap_thousand,
+      [&](const Localizer&, const UpdateResult& r) { EXPECT_EQ(r.particles, kThousand); });
+  if (heap_million && heap_thousand) {
+    // Per particle: the difference between the two filters, so that what scales with the
+    // map (the field, the pose search's pyramid, the free-space clearance) is left out.
+    const double per = (static_cast<double>(*heap_million) - static_cast<double>(*heap_thousand)) /
+                       static_cast<double>(kMillion - kThousand);
+    std::cout << "; whole filter incl. scratch " << per << " bytes/particle (beside "
+              << *heap_thousand << " bytes at " << kThousand << ")";
     EXPECT_GE(per, 28.0);
     EXPECT_LT(per, 128.0);
   }

@@ -136,9 +136,11 @@ struct EstimateConfig {
   /// Reported `converged` also needs the scan to fit the estimate at least this fraction
   /// of its usual fit (UpdateResult::fit, running mean over ~100 converged updates): a
   /// filter settled in the wrong place, or one a crowd hides the walls from, cannot
-  /// confirm its pose. Only the report: the filter's own dynamics use the cluster alone.
-  /// 0 turns it off.
-  double converged_fit_ratio = 0.6;
+  /// confirm its pose. Stricter than the tracker's lost line (0.6, rescue_fit_ratio): a
+  /// pose it does not count as lost need not be confirmed either (bench/robustness/README
+  /// measures the trade). Only the report: the filter's own dynamics use the cluster
+  /// alone. 0 turns it off.
+  double converged_fit_ratio = 0.75;
 };
 
 /// Competing hypotheses from scan-to-map search (pose_search.hpp): poses that odometry and

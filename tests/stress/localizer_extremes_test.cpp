@@ -126,7 +126,7 @@ TEST(StressExtremes, MillionParticles) {
   const Pose2 moved = truth.compose({0.12, 0.0, 0.0});
   // A filter of `n` particles through two updates; `heap`: what it holds on the heap
   // then (the field, the search pyramid and the other map-sized parts included).
-  const auto run = [&](std::size_t n, std::optional<std::size_t>& heap,
+  const auto run = [&](std::size_t n, std::optional<double>& heap,
                        const std::function<void(const Localizer&, const UpdateResult&)>& check) {
     LocalizerConfig cfg;
     cfg.filter.particles = cfg.filter.global_particles = n;
@@ -140,10 +140,10 @@ TEST(StressExtremes, MillionParticles) {
     UpdateResult r = loc.update({}, scanner.scan(truth, rng), 0.0);
     r = loc.update({0.12, 0.0, 0.0}, scanner.scan(moved, rng), 0.1);
     const auto after = heap_in_use();
-    if (before && after) heap = *after - *before;
+    if (before && after) heap = static_cast<double>(*after) - static_cast<double>(*before);
     check(loc, r);
   };
-  std::optional<std::size_t> heap_million, heap_thousand;
+  std::optional<double> heap_million, heap_thousand;
   run(kMillion, heap_million, [&](const Localizer& loc, const UpdateResult& r) {
     ASSERT_TRUE(r.measured());
     EXPECT_TRUE(r.resampled);
@@ -166,8 +166,7 @@ TEST(StressExtremes, MillionParticles) {
   if (heap_million && heap_thousand) {
     // Per particle: the difference between the two filters, so that what scales with the
     // map (the field, the pose search's pyramid, the free-space clearance) is left out.
-    const double per = (static_cast<double>(*heap_million) - static_cast<double>(*heap_thousand)) /
-                       static_cast<double>(kMillion - kThousand);
+    const double per = (*heap_million - *heap_thousand) / static_cast<double>(kMillion - kThousand);
     std::cout << "; whole filter incl. scratch " << per << " bytes/particle (beside "
               << *heap_thousand << " bytes at " << kThousand << ")";
     EXPECT_GE(per, 28.0);

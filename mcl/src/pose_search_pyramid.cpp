@@ -1,4 +1,4 @@
-// PoseSearch's pyramid: the max-pooled cost levels it bounds nodes with, built once per
+// PoseSearch's pyramid: the min-pooled cost levels it bounds nodes with, built once per
 // field, and the root blocks a global search walks.
 #include <algorithm>
 #include <cmath>

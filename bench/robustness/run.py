@@ -4,6 +4,7 @@
     bench/robustness/run.py [--data DIR] [--pgmcl BIN] [--seeds N] [--jobs N]
                             [--logs intel,aces,fr079,csail-raw] [--conditions a,b,...]
                             [--modes tracking,global] [--out DIR] [--set KEY=VALUE]...
+                            [--filter-seed-offset K]
 
 For every log, condition, mode and seed it makes a case with `pgmcl perturb` /
 `pgmcl perturb-map` (seeded, so a seed reproduces a case exactly), runs
@@ -16,6 +17,11 @@ and scores it from metrics.yaml:
   (2 m slip) is allowed and left out of the ATE (ALLOWANCE).
 It writes runs.csv (one row per run) and summary.md (one row per condition and mode) to
 --out (default results/bench/robustness). Standard library only.
+
+Seed s makes the case and, by default, also seeds the filter. --filter-seed-offset K
+seeds the filter with s + K on the same cases: the runs that then change outcome measure
+how much of a success rate is the filter's own random draws, the margin a change to the
+engine must clear before it counts.
 """
 import argparse
 import concurrent.futures
@@ -193,6 +199,8 @@ def main():
     ap.add_argument("--out", default=os.path.join(ROOT, "results", "bench", "robustness"))
     ap.add_argument("--seeds", type=int, default=5, help="how many seeds")
     ap.add_argument("--first-seed", type=int, default=1, help="seeds first-seed .. first-seed + seeds - 1")
+    ap.add_argument("--filter-seed-offset", type=int, default=0, metavar="K",
+                    help="seed the filter with seed + K (the cases keep seed): the draws' share of the result")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--logs", default="intel,aces,fr079,csail-raw")
     ap.add_argument("--conditions", default=",".join(DEFAULT_CONDITIONS))
@@ -264,7 +272,7 @@ def main():
                     f.write(" ".join(opts))
         out = os.path.join(a.out, "runs", f"{name}-{mode}")
         cmd = [a.pgmcl, "localize", "--map", os.path.join(case, variant + ".yaml"), "--log", raw,
-               "--truth", truth, "--seed", str(seed), "--out", out, "--quiet"]
+               "--truth", truth, "--seed", str(seed + a.filter_seed_offset), "--out", out, "--quiet"]
         if mode == "global":
             cmd.append("--global")
         for s in a.set:
@@ -345,7 +353,9 @@ def write_summary(rows, path, a):
                      f" {fc} ({fr}) | {ms:.2f} | {parts:.0f} | {rot:.1f}, {trans:.1f} |")
     lines.append("")
     lines.append(f"All: {ok}/{total} runs succeed ({100.0 * ok / max(1, total):.1f} %). "
-                 f"Seeds {a.first_seed}..{a.first_seed + a.seeds - 1}; extra settings: {' '.join(a.set) or 'none (engine defaults)'}.")
+                 f"Seeds {a.first_seed}..{a.first_seed + a.seeds - 1}"
+                 + (f" (filter seeded with seed + {a.filter_seed_offset})" if a.filter_seed_offset else "")
+                 + f"; extra settings: {' '.join(a.set) or 'none (engine defaults)'}.")
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
     print("\n".join(lines))

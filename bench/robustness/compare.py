@@ -4,7 +4,7 @@
     bench/robustness/compare.py --base DIR [DIR...] --variant DIR [DIR...] [--list]
 
 Each DIR is an --out directory of run.py (its runs.csv); several per side are merged (one
-per seed set, say). Runs are matched by log, condition, mode and seed. It prints each
+per seed set, say; a run may appear on one side only once). Runs are matched by log, condition, mode and seed. It prints each
 side's successes, per log and per condition, the runs gained and lost, and the exact
 two-sided sign test (McNemar's) on those flips: the chance that the filter's random draws
 alone would split them at least this unevenly. Standard library only.
@@ -19,7 +19,7 @@ COLUMNS = ("log", "condition", "mode", "seed", "success")
 
 
 def load(dirs):
-    runs = {}
+    runs, where = {}, {}
     for d in dirs:
         path = os.path.join(d, "runs.csv")
         if not os.path.exists(path):
@@ -35,7 +35,12 @@ def load(dirs):
                              "expected True or False")
                 if not (r["seed"] or "").isdigit():
                     sys.exit(f"compare.py: {path}:{line}: field seed: {r['seed']!r}, expected a whole number")
-                runs[(r["log"], r["condition"], r["mode"], int(r["seed"]))] = r["success"] == "True"
+                key = (r["log"], r["condition"], r["mode"], int(r["seed"]))
+                if key in where:  # overlapping seed sets on one side: which one counts?
+                    sys.exit(f"compare.py: {path}:{line}: run {'-'.join(map(str, key))} "
+                             f"is also in {where[key]}")
+                where[key] = f"{path}:{line}"
+                runs[key] = r["success"] == "True"
     return runs
 
 

@@ -74,6 +74,11 @@ class Compare(unittest.TestCase):
                 f.write(HEADER + "intel,glitch,tracking,one,True\n")
             p = run("--base", good, "--variant", bad)
             self.assertIn(os.path.join(bad, "runs.csv") + ":2: field seed: 'one'", p.stderr)
+            again = suite(root, "again", ["intel,glitch,global,2,True", "intel,glitch,tracking,1,False"])
+            p = run("--base", good, "--variant", good, again)
+            self.assertNotEqual(p.returncode, 0)
+            self.assertIn(os.path.join(again, "runs.csv") + ":3: run intel-glitch-tracking-1 is also in "
+                          + os.path.join(good, "runs.csv") + ":2", p.stderr)
             other = suite(root, "other", ["fr079,noisy,tracking,4,True"])
             p = run("--base", good, "--variant", other)
             self.assertNotEqual(p.returncode, 0)

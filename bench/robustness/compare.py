@@ -4,10 +4,11 @@
     bench/robustness/compare.py --base DIR [DIR...] --variant DIR [DIR...] [--list]
 
 Each DIR is an --out directory of run.py (its runs.csv); several per side are merged (one
-per seed set, say; a run may appear on one side only once). Runs are matched by log, condition, mode and seed. It prints each
-side's successes, per log and per condition, the runs gained and lost, and the exact
-two-sided sign test (McNemar's) on those flips: the chance that the filter's random draws
-alone would split them at least this unevenly. Standard library only.
+per seed set, say; a run may appear on one side only once). Runs are matched by log,
+condition, mode and seed. It prints each side's successes, per log and per condition, the
+runs gained and lost, and the exact two-sided sign test (McNemar's) on those flips: the
+chance that the filter's random draws alone would split them at least this unevenly.
+Standard library only.
 """
 import argparse
 import csv

@@ -146,6 +146,23 @@ def read_tum(path):
     return out
 
 
+def excursions(e, cond):
+    """Runs of updates more than 0.25 m off, as [begin, end) indices into the errors `e`,
+    and those of them that count as lost: past 1 m, and longer than ALLOWANCE[cond]."""
+    runs, i = [], 0
+    while i < len(e):
+        if e[i] > 0.25:
+            j = i
+            while j < len(e) and e[j] > 0.25:
+                j += 1
+            runs.append((i, j))
+            i = j
+        else:
+            i += 1
+    allowance = ALLOWANCE.get(cond, 0)
+    return runs, [(b, k) for (b, k) in runs if k - b > allowance and max(e[b:k]) > 1.0]
+
+
 def score(mode, cond, updates_csv, truth):
     """(success, lock-on s, lock-on travel m, longest run more than 1 m off, scored ATE).
 
@@ -160,18 +177,7 @@ def score(mode, cond, updates_csv, truth):
     t = [float(r["stamp"]) for r in rows]
     e = [float(r["error_m"]) for r in rows]
     allowance = ALLOWANCE.get(cond, 0)
-    # Excursions above 0.25 m: [begin, end) index runs.
-    runs, i = [], 0
-    while i < len(e):
-        if e[i] > 0.25:
-            j = i
-            while j < len(e) and e[j] > 0.25:
-                j += 1
-            runs.append((i, j))
-            i = j
-        else:
-            i += 1
-    lost = [(b, k) for (b, k) in runs if k - b > allowance and max(e[b:k]) > 1.0]
+    runs, lost = excursions(e, cond)
     lock = lost[-1][1] if lost else 0
     if lock >= len(e):
         return False, None, None, max(k - b for b, k in lost), None

@@ -43,22 +43,26 @@ def number(path, line, row, field):
         fail(f"{path}:{line}: field {field}: {row.get(field)!r}, expected a number")
 
 
-def read_updates(path):
-    """The updates with a ground-truth error (run.py scores only those), as dicts."""
+def csv_rows(path, fields, what):
+    """(line number, row) of a CSV file whose header holds `fields`; `what` it should be."""
     if not os.path.exists(path):
-        fail(f"{path}: no such file (the run's updates.csv)")
-    out = []
+        fail(f"{path}: no such file ({what})")
     with open(path, newline="") as f:
         reader = csv.DictReader(f)
-        for field in ("stamp", "converged", "fit", "switched", "error_m"):
+        for field in fields:
             if field not in (reader.fieldnames or []):
                 fail(f"{path}:1: no field {field} in the header")
-        for line, r in enumerate(reader, start=2):
-            if r["error_m"] in ("nan", ""):
-                continue
-            out.append({"stamp": number(path, line, r, "stamp"), "fit": number(path, line, r, "fit"),
-                        "error": number(path, line, r, "error_m"),
-                        "switched": r["switched"] == "1", "converged": r["converged"] == "1"})
+        yield from enumerate(reader, start=2)
+
+
+def read_updates(path):
+    """The updates with a ground-truth error (run.py scores only those), as dicts."""
+    out = []
+    for line, r in csv_rows(path, ("stamp", "fit", "switched", "error_m"), "the run's updates.csv"):
+        if r["error_m"] in ("nan", ""):
+            continue
+        out.append({"stamp": number(path, line, r, "stamp"), "fit": number(path, line, r, "fit"),
+                    "error": number(path, line, r, "error_m"), "switched": r["switched"] == "1"})
     return out
 
 
@@ -93,23 +97,17 @@ def load(dirs, window, low_fit):
     found = []  # (dir, log, condition, mode, seed, success, diagnosis or None)
     for d in dirs:
         path = os.path.join(d, "runs.csv")
-        if not os.path.exists(path):
-            fail(f"{path}: no such file (an --out directory of run.py?)")
-        with open(path, newline="") as f:
-            reader = csv.DictReader(f)
-            for field in ("log", "condition", "mode", "seed", "success"):
-                if field not in (reader.fieldnames or []):
-                    fail(f"{path}:1: no field {field} in the header")
-            for line, r in enumerate(reader, start=2):
-                if r["success"] not in ("True", "False"):
-                    fail(f"{path}:{line}: field success: {r['success']!r}, expected True or False")
-                ok = r["success"] == "True"
-                diagnosis = None
-                if not ok:
-                    name = f"{r['log']}-{r['condition']}-s{r['seed']}-{r['mode']}"
-                    updates = read_updates(os.path.join(d, "runs", name, "updates.csv"))
-                    diagnosis = diagnose(updates, r["condition"], window, low_fit)
-                found.append((d, r["log"], r["condition"], r["mode"], r["seed"], ok, diagnosis))
+        fields = ("log", "condition", "mode", "seed", "success")
+        for line, r in csv_rows(path, fields, "an --out directory of run.py?"):
+            if r["success"] not in ("True", "False"):
+                fail(f"{path}:{line}: field success: {r['success']!r}, expected True or False")
+            ok = r["success"] == "True"
+            diagnosis = None
+            if not ok:
+                name = f"{r['log']}-{r['condition']}-s{r['seed']}-{r['mode']}"
+                updates = read_updates(os.path.join(d, "runs", name, "updates.csv"))
+                diagnosis = diagnose(updates, r["condition"], window, low_fit)
+            found.append((d, r["log"], r["condition"], r["mode"], r["seed"], ok, diagnosis))
     return found
 
 

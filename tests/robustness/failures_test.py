@@ -84,6 +84,10 @@ class Failures(unittest.TestCase):
             p = run(a)
             self.assertNotEqual(p.returncode, 0)
             self.assertIn(f"{updates}:12: field fit: 'high', expected a number", p.stderr)
+            with open(updates, "w") as f:
+                f.write("stamp,converged,switched,error_m\n0.0,1,0,0.05\n")
+            p = run(a)
+            self.assertIn(f"{updates}:1: no field fit in the header", p.stderr)
             os.remove(updates)
             p = run(a)
             self.assertIn(f"{updates}: no such file", p.stderr)

@@ -112,7 +112,8 @@ def load(dirs, window, low_fit):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("dirs", nargs="+", metavar="DIR")
     ap.add_argument("--window", type=int, default=5,
                     help="updates before the excursion that count towards its cause (default 5)")
@@ -139,8 +140,10 @@ def main():
     always = sorted(k for k, v in outcomes.items() if not any(v))
     print(f"{len(outcomes)} cases, {len(always)} fail in every directory that holds them")
     if a.list:
-        for d, log, cond, mode, seed, _, (cause, t, length, worst, fit) in sorted(
-                failed, key=lambda x: (x[6][0], x[1], x[2], x[3], int(x[4]) if x[4].isdigit() else 0)):
+        def order(x):
+            return x[6][0], x[1], x[2], x[3], int(x[4]) if x[4].isdigit() else 0
+
+        for d, log, cond, mode, seed, _, (cause, t, length, worst, fit) in sorted(failed, key=order):
             where = ("" if t is None else
                      f" at {t:.1f} s, {length} updates, worst {worst:.2f} m, fit {fit:.2f}")
             print(f"  {cause:6s} {log} {cond} {mode} seed {seed}{where} ({d})")

@@ -34,7 +34,7 @@ def run(*args):
 
 GOOD = (0.9, 0, 0.05)
 # A switch as the set leaves, two updates before it is 1.5 m off for three updates.
-SWITCHED = [GOOD] * 4 + [(0.9, 1, 0.3), (0.9, 0, 0.6), (0.9, 0, 1.5), (0.9, 0, 1.5), (0.9, 0, 1.5)] + [GOOD]
+SWITCHED = [GOOD] * 4 + [(0.9, 1, 0.3), (0.9, 0, 0.6)] + [(0.9, 0, 1.5)] * 3 + [GOOD]
 # The scan fits 0.2 of the beams three updates before the set drifts off: within a window
 # of 5 updates before the excursion, not within one of 2.
 MISFIT = [GOOD] * 3 + [(0.2, 0, 0.1)] + [GOOD] * 2 + [(0.9, 0, 0.3)] * 3 + [(0.9, 0, 2.0)] + [GOOD]

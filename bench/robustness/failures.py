@@ -137,16 +137,21 @@ def main():
     outcomes = collections.defaultdict(list)
     for x in found:
         outcomes[x[1:5]].append(x[5])
-    always = sorted(k for k, v in outcomes.items() if not any(v))
+    always = sorted((k for k, v in outcomes.items() if not any(v)),
+                    key=lambda k: (*k[:3], int(k[3]) if k[3].isdigit() else 0))
     print(f"{len(outcomes)} cases, {len(always)} fail in every directory that holds them")
     if a.list:
         def order(x):
             return x[6][0], x[1], x[2], x[3], int(x[4]) if x[4].isdigit() else 0
 
-        for d, log, cond, mode, seed, _, (cause, t, length, worst, fit) in sorted(failed, key=order):
+        for d, log, cond, mode, seed, _, diagnosis in sorted(failed, key=order):
+            cause, t, length, worst, fit = diagnosis
             where = ("" if t is None else
                      f" at {t:.1f} s, {length} updates, worst {worst:.2f} m, fit {fit:.2f}")
             print(f"  {cause:6s} {log} {cond} {mode} seed {seed}{where} ({d})")
+        print("failing in every directory that holds them:")
+        for log, cond, mode, seed in always:
+            print(f"  {log} {cond} {mode} seed {seed}")
 
 
 if __name__ == "__main__":

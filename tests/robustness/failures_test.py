@@ -72,6 +72,9 @@ class Failures(unittest.TestCase):
             self.assertIn(f"none   aces glitch tracking seed 4 ({a})", p.stdout)
             self.assertIn("other  aces noisy global seed 5 at 3.0 s, 2 updates, worst 3.00 m, "
                           f"fit 0.90 ({a})", p.stdout)
+            self.assertIn("failing in every directory that holds them:\n  aces bias global seed 3\n"
+                          "  aces glitch tracking seed 4\n  aces noisy global seed 5\n"
+                          "  intel noisier tracking seed 1\n", p.stdout)
             p = run(a, "--window", "2")
             self.assertIn("by cause: switch 1, misfit 0, other 2, none 2", p.stdout)
 

@@ -9,9 +9,9 @@ that lost it, as run.py scores it (more than 0.25 m off, past 1 m, longer than t
 condition's allowance): the first one after the run was first within 1 m, so that a global
 search is no loss. It then looks at the updates from `window` before that excursion up
 to the first one more than 1 m off, and names a cause:
-  switch   the competing hypotheses switched the set there (a wrong place won);
+  switch   the competing hypotheses switched the set there (to a wrong place, or back);
   misfit   the scan fitted the estimate below --low-fit there (people, clutter, a slip);
-  other    neither (the set drifted off under the odometry);
+  other    neither: the set drifted off while the scans fitted it;
   none     no excursion was lost: the ATE missed its bound, or a global search took too long.
 It prints the failures per cause and condition, and how many cases failed in every DIR
 that holds them. Standard library only.
@@ -20,7 +20,6 @@ import argparse
 import collections
 import csv
 import importlib.util
-import math
 import os
 import sys
 

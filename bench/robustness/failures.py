@@ -31,6 +31,11 @@ _spec.loader.exec_module(robustness_run)
 CAUSES = ("switch", "misfit", "other", "none")
 
 
+def seed_order(seed):
+    """A seed as a number for sorting (runs.csv's seeds are whole numbers)."""
+    return int(seed) if seed.isdigit() else 0
+
+
 def fail(msg):
     sys.exit(f"failures.py: {msg}")
 
@@ -103,8 +108,8 @@ def load(dirs, window, low_fit):
             ok = r["success"] == "True"
             diagnosis = None
             if not ok:
-                name = f"{r['log']}-{r['condition']}-s{r['seed']}-{r['mode']}"
-                updates = read_updates(os.path.join(d, "runs", name, "updates.csv"))
+                run = robustness_run.run_dir(d, r["log"], r["condition"], r["seed"], r["mode"])
+                updates = read_updates(os.path.join(run, "updates.csv"))
                 diagnosis = diagnose(updates, r["condition"], window, low_fit)
             found.append((d, r["log"], r["condition"], r["mode"], r["seed"], ok, diagnosis))
     return found
@@ -137,11 +142,11 @@ def main():
     for x in found:
         outcomes[x[1:5]].append(x[5])
     always = sorted((k for k, v in outcomes.items() if not any(v)),
-                    key=lambda k: (*k[:3], int(k[3]) if k[3].isdigit() else 0))
+                    key=lambda k: (*k[:3], seed_order(k[3])))
     print(f"{len(outcomes)} cases, {len(always)} fail in every directory that holds them")
     if a.list:
         def order(x):
-            return x[6][0], x[1], x[2], x[3], int(x[4]) if x[4].isdigit() else 0
+            return x[6][0], x[1], x[2], x[3], seed_order(x[4])
 
         for d, log, cond, mode, seed, _, diagnosis in sorted(failed, key=order):
             cause, t, length, worst, fit = diagnosis

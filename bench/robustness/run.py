@@ -146,6 +146,11 @@ def read_tum(path):
     return out
 
 
+def run_dir(out, log, cond, seed, mode):
+    """Where a run's outputs (console.txt, metrics.yaml, updates.csv) go under --out."""
+    return os.path.join(out, "runs", f"{log}-{cond}-s{seed}-{mode}")
+
+
 def excursions(e, cond):
     """Runs of updates more than 0.25 m off, as [begin, end) indices into the errors `e`,
     and those of them that count as lost: past 1 m, and longer than ALLOWANCE[cond]."""
@@ -262,7 +267,6 @@ def main():
     def one(job, seed, mode):
         log, cond, variant, opts, source, truth_log = job
         case = os.path.join(cases_dir, log)
-        name = f"{log}-{cond}-s{seed}"
         if opts is None:  # real odometry
             raw, truth = source, truth_log
         else:
@@ -276,7 +280,7 @@ def main():
                      "--truth-out", truth, "--quiet"] + opts)
                 with open(stamp, "w") as f:
                     f.write(" ".join(opts))
-        out = os.path.join(a.out, "runs", f"{name}-{mode}")
+        out = run_dir(a.out, log, cond, seed, mode)
         cmd = [a.pgmcl, "localize", "--map", os.path.join(case, variant + ".yaml"), "--log", raw,
                "--truth", truth, "--seed", str(seed + a.filter_seed_offset), "--out", out, "--quiet"]
         if mode == "global":
@@ -322,7 +326,7 @@ def main():
             print(f"FAILED: {r['log']} {r['condition']} {r['mode']} seed {r['seed']}: "
                   f"ATE {fmt(r['scored_ate_m'])} m, lock-on {fmt(r['lock_s'], 1)} s, "
                   f"longest stretch more than 1 m off {r['lost_run']} updates "
-                  f"(console: {a.out}/runs/{r['log']}-{r['condition']}-s{r['seed']}-{r['mode']})",
+                  f"(console: {run_dir(a.out, r['log'], r['condition'], r['seed'], r['mode'])})",
                   file=sys.stderr)
         sys.exit(1)
 

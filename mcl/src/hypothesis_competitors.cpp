@@ -66,6 +66,7 @@ void HypothesisTracker::track(const Pose2& prediction, const Pose2& delta, std::
   // Clutter (people around the robot) lowers the prediction's fit for as long as it stays:
   // new view seen meanwhile is no sign that the filter settled on the wrong place.
   const bool steady = !have_fit_mean_ || fit >= kNormalFit * fit_usual_;
+  const double usual = std::max(fit_mean_, fit_usual_);
   for (Competitor& c : competitors_) {
     const Scored k = climb(c.pose.compose(delta));
     c.pose = k.pose;
@@ -74,6 +75,7 @@ void HypothesisTracker::track(const Pose2& prediction, const Pose2& delta, std::
     c.fit = fit_of(k);
     c.view += view;
     if (steady) c.steady_view += view;
+    c.led = leads(c.fit, fit, usual) ? c.led + 1 : 0;
     ++c.age;
   }
 
@@ -194,7 +196,15 @@ void HypothesisTracker::add(const Scored& c, const Scored& ref, Competitor::Orig
     }
     return;
   }
-  competitors_.push_back({c.pose, e, e, fit_of(c), 0.0, 0.0, 0, origin, abrupt});
+  const double fit = fit_of(c);
+  const int led = leads(fit, fit_of(ref), std::max(fit_mean_, fit_usual_)) ? 1 : 0;
+  competitors_.push_back({.pose = c.pose,
+                          .evidence = e,
+                          .last = e,
+                          .fit = fit,
+                          .led = led,
+                          .origin = origin,
+                          .abrupt = abrupt});
 }
 
 void HypothesisTracker::prune(const Scored& ref) {
@@ -216,6 +226,12 @@ void HypothesisTracker::prune(const Scored& ref) {
   competitors_.resize(kept);
 }
 
+bool HypothesisTracker::leads(double place_fit, double prediction_fit,
+                              double usual) const noexcept {
+  return have_fit_mean_ && place_fit >= kNormalFit * usual &&
+         place_fit >= prediction_fit + kGlitchGain;
+}
+
 bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, double fit,
                                    std::size_t blocked, double step, bool lost) const {
   // Every winner outweighs the prediction, gained on this scan, and is not contradicted by
@@ -231,6 +247,13 @@ bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, doubl
       moved <=
       std::max(kGlitchReach, std::sin(std::min(heading_window_, 0.5 * std::numbers::pi)) * step);
   const double turned = std::abs(wrap_angle(c.pose.theta - ref.pose.theta));
+  // A shift the scans have settled: for kSlipScans scans in a row the place explained the
+  // scan as the map usually does, and clearly better than the prediction. Where the map
+  // shows what is not there now (a door shut when mapped), its rays may cross more walls
+  // than the prediction's, and the free-space rules below would hold it back for good.
+  if (cfg_.sustained_lead && c.led >= kSlipScans && turned < kFadedHeading &&
+      (c.origin == Competitor::Origin::kRescue || in_rescue_window(c.pose, ref.pose)))
+    return true;
   // Confirmed by the free space: its readings cross clearly fewer walls than the
   // prediction's, and more of them fit. Within a glitch's reach they must cross almost
   // none; farther (a slip), on a second scan, at most half as many as the prediction's.
@@ -309,8 +332,12 @@ void HypothesisTracker::maybe_switch(const Scored& ref, double fit, std::size_t 
   out.switched = true;
   // The old prediction becomes a competitor, with the evidence against it; it may come back
   // as a glitch candidate would, should the switch have been wrong.
-  *winner = {ref.pose, -winner->evidence,           -winner->last, fit, 0.0, 0.0,
-             0,        Competitor::Origin::kRescue, true};
+  *winner = {.pose = ref.pose,
+             .evidence = -winner->evidence,
+             .last = -winner->last,
+             .fit = fit,
+             .origin = Competitor::Origin::kRescue,
+             .abrupt = true};
 }
 
 }  // namespace pgmcl::detail

@@ -68,8 +68,7 @@ void HypothesisTracker::converged(const Pose2& estimate) {
     if (competitors_.size() >= cfg_.max_competitors) break;
     bool dup = same_place(p, estimate);
     for (const Competitor& c : competitors_) dup = dup || same_place(c.pose, p);
-    if (!dup)
-      competitors_.push_back({p, 0.0, 0.0, 0.0, 0.0, 0.0, 0, Competitor::Origin::kGlobal, false});
+    if (!dup) competitors_.push_back({.pose = p, .origin = Competitor::Origin::kGlobal});
   }
 }
 

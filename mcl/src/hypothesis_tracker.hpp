@@ -120,6 +120,7 @@ class HypothesisTracker {
     double view = 0.0;         // new view since it was found (metres, kViewPerRadian)
     double steady_view = 0.0;  // ... of it while the prediction fitted as the map usually does
     int age = 0;               // updates tracked
+    int led = 0;               // updates in a row its fit led the prediction's (leads())
     // Where it came from decides what it may do (may_switch): a place the global search
     // proposed had the prior of the one the filter settled on; one found around a
     // prediction that stopped fitting is a glitch candidate; one the map sweep found
@@ -161,6 +162,9 @@ class HypothesisTracker {
   [[nodiscard]] Scored climb(const Pose2& start) const;
   [[nodiscard]] Scored refine(const PoseCandidate& coarse);
   [[nodiscard]] double fit_of(const Scored& s) const noexcept;
+  /// A place's fit leads the prediction's: it explains the scan as the map usually does
+  /// (`usual`, the prediction's running fit) and clearly better than the prediction.
+  [[nodiscard]] bool leads(double place_fit, double prediction_fit, double usual) const noexcept;
   [[nodiscard]] double evidence(std::uint32_t q_ref, std::uint32_t q) const noexcept;
   [[nodiscard]] bool same_place(const Pose2& a, const Pose2& b, double scale = 1.0) const noexcept;
   [[nodiscard]] bool near_prediction(const Pose2& a, const Pose2& ref) const noexcept;

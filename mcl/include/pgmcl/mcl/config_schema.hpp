@@ -316,6 +316,8 @@ void describe_hypotheses(V& v, Config& c) {
     v.flag(
         Field{"free_space_weights", "", "while misfit, leading particles lose wall-crossing beams"},
         h.free_space_weights);
+    v.flag(Field{"sustained_lead", "", "a shift that fits far better for 3 scans wins"},
+           h.sustained_lead);
   });
 }
 

@@ -1,8 +1,8 @@
-// A 2 m wheel slip on a real log, where the map is out of date (data/README.md: fr079, the
-// robustness suite's slip case of seed 1, 70-130 s). After the slip at 100.2 s the true pose
-// explains the scans far better than the prediction, but its readings cross more mapped
-// walls (doors drawn shut, things moved since): the free space speaks for the prediction.
-// HypothesesConfig::sustained_lead lets the scans' verdict win after three of them.
+// A 2 m wheel slip on a real log (data/README.md: fr079, the robustness suite's slip case of
+// seed 1, 70-130 s), on a map built from the whole log that shows what stood there on most
+// passes. After the slip at 100.2 s the true pose explains the scans far better than the
+// prediction, but its readings cross more non-free cells: the free space speaks for the
+// prediction. HypothesesConfig::sustained_lead lets the scans' verdict win after three scans.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -186,11 +186,12 @@ struct HypothesesConfig {
   /// credit of readings that crossed walls to reach their endpoints: people hiding the
   /// walls otherwise let a turned particle win.
   bool free_space_weights = true;
-  /// A candidate within the rescue window, turned less than 10 deg from the prediction (a
-  /// slip), that for three scans in a row fitted as the map usually does and by three tenths
-  /// of the probe beams more than the prediction wins even where its rays cross more mapped
-  /// walls than the prediction's: a map that shows what is not there now (a door shut when
-  /// it was mapped, things moved since) must not hold a slip's true pose back.
+  /// A candidate of the rescue search (or a sweep place within its window), turned less
+  /// than 10 deg from the prediction (a slip), that for three scans in a row fitted as the
+  /// map usually does and by three tenths of the probe beams more than the prediction wins
+  /// even where its rays cross more mapped walls than the prediction's: a map that shows
+  /// what is not there now (a door shut when it was mapped) must not hold a slip's true pose
+  /// back.
   bool sustained_lead = true;
 };
 

@@ -14,18 +14,13 @@
 #include "pgmcl/io/tum.hpp"
 #include "pgmcl/map_io/map_io.hpp"
 #include "pgmcl/replay/replay.hpp"
+#include "replay_case.hpp"
 
 namespace pgmcl::replay {
 namespace {
 
-struct Excerpt {
-  maps::OccupancyGrid map;
-  io::CarmenLog log;
-  io::Trajectory truth;
-};
-
-const Excerpt& fr079_slip() {
-  static const Excerpt e{
+const test::Case& fr079_slip() {
+  static const test::Case e{
       maps::load_map(PGMCL_SOURCE_DIR "/data/maps/fr079/fr079-0.05.yaml"),
       io::read_carmen(PGMCL_SOURCE_DIR "/data/logs/fr079-slip-s1-70-130s.log.gz"),
       io::read_tum(PGMCL_SOURCE_DIR "/data/logs/fr079-slip-s1-70-130s.tum.gz")};
@@ -34,12 +29,7 @@ const Excerpt& fr079_slip() {
 
 // The longest run of updates more than 1 m off the truth.
 std::size_t longest_lost_run(bool sustained_lead, std::uint64_t seed) {
-  ReplayJob job;
-  job.map = &fr079_slip().map;
-  job.log = &fr079_slip().log;
-  job.log_name = "fr079 slip excerpt";
-  job.truth = fr079_slip().truth;
-  job.init.kind = InitialBelief::Kind::kTruth;
+  ReplayJob job = test::job_from_truth(fr079_slip(), "fr079 slip excerpt");
   job.config.seed = seed;
   job.config.hypotheses.sustained_lead = sustained_lead;
   const ReplayResult r = run(job);

@@ -11,15 +11,12 @@
 #include "pgmcl/io/sim_log_io.hpp"
 #include "pgmcl/io/values.hpp"
 #include "pgmcl/sims/scenario.hpp"
+#include "replay_case.hpp"
 
 namespace pgmcl::replay {
 namespace {
 
-struct Case {
-  maps::OccupancyGrid map;
-  io::CarmenLog log;
-  io::Trajectory truth;
-};
+using test::Case;
 
 const Case& lab() {  // the UTM-30LX lab scene, shortened
   static const Case c = [] {
@@ -36,13 +33,7 @@ const Case& lab() {  // the UTM-30LX lab scene, shortened
 }
 
 ReplayJob job_from_truth() {
-  ReplayJob job;
-  job.map = &lab().map;
-  job.log = &lab().log;
-  job.log_name = "lab (simulated)";
-  job.truth = lab().truth;
-  job.init.kind = InitialBelief::Kind::kTruth;
-  return job;
+  return test::job_from_truth(lab(), "lab (simulated)");
 }
 
 TEST(Replay, TracksTheSimulatedLabAndReportsEveryUpdate) {

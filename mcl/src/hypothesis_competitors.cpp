@@ -66,7 +66,6 @@ void HypothesisTracker::track(const Pose2& prediction, const Pose2& delta, std::
   // Clutter (people around the robot) lowers the prediction's fit for as long as it stays:
   // new view seen meanwhile is no sign that the filter settled on the wrong place.
   const bool steady = !have_fit_mean_ || fit >= kNormalFit * fit_usual_;
-  const double usual = std::max(fit_mean_, fit_usual_);
   for (Competitor& c : competitors_) {
     const Scored k = climb(c.pose.compose(delta));
     c.pose = k.pose;
@@ -75,7 +74,7 @@ void HypothesisTracker::track(const Pose2& prediction, const Pose2& delta, std::
     c.fit = fit_of(k);
     c.view += view;
     if (steady) c.steady_view += view;
-    c.led = leads(c.fit, fit, usual) ? c.led + 1 : 0;
+    c.led = leads(c.fit, fit) ? c.led + 1 : 0;
     ++c.age;
   }
 
@@ -197,7 +196,7 @@ void HypothesisTracker::add(const Scored& c, const Scored& ref, Competitor::Orig
     return;
   }
   const double fit = fit_of(c);
-  const int led = leads(fit, fit_of(ref), std::max(fit_mean_, fit_usual_)) ? 1 : 0;
+  const int led = leads(fit, fit_of(ref)) ? 1 : 0;
   competitors_.push_back({.pose = c.pose,
                           .evidence = e,
                           .last = e,
@@ -226,9 +225,8 @@ void HypothesisTracker::prune(const Scored& ref) {
   competitors_.resize(kept);
 }
 
-bool HypothesisTracker::leads(double place_fit, double prediction_fit,
-                              double usual) const noexcept {
-  return have_fit_mean_ && place_fit >= kNormalFit * usual &&
+bool HypothesisTracker::leads(double place_fit, double prediction_fit) const noexcept {
+  return have_fit_mean_ && place_fit >= kNormalFit * usual_fit() &&
          place_fit >= prediction_fit + kGlitchGain;
 }
 
@@ -266,7 +264,7 @@ bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, doubl
   // The others must explain the scan as the map usually does here: with some slack when
   // they were found as the prediction's fit fell at once, fully when it faded (clutter,
   // or a part of the map that is wrong, where some other pose fits better by chance).
-  const double usual = std::max(fit_mean_, fit_usual_);
+  const double usual = usual_fit();
   if (!confirmed && c.fit < (c.abrupt ? kNormalFit : 1.0) * usual) return false;
   if (c.age == 0)  // at once, with this very scan: a glitch-sized correction only
     return c.origin == Competitor::Origin::kRescue && abrupt && lost && nearby &&

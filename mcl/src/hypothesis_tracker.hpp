@@ -162,9 +162,12 @@ class HypothesisTracker {
   [[nodiscard]] Scored climb(const Pose2& start) const;
   [[nodiscard]] Scored refine(const PoseCandidate& coarse);
   [[nodiscard]] double fit_of(const Scored& s) const noexcept;
+  /// How well the map usually explains the scan at the prediction: the higher of its fit's
+  /// short and long running means.
+  [[nodiscard]] double usual_fit() const noexcept { return std::max(fit_mean_, fit_usual_); }
   /// A place's fit leads the prediction's: it explains the scan as the map usually does
-  /// (`usual`, the prediction's running fit) and clearly better than the prediction.
-  [[nodiscard]] bool leads(double place_fit, double prediction_fit, double usual) const noexcept;
+  /// (usual_fit()) and clearly better than the prediction.
+  [[nodiscard]] bool leads(double place_fit, double prediction_fit) const noexcept;
   [[nodiscard]] double evidence(std::uint32_t q_ref, std::uint32_t q) const noexcept;
   [[nodiscard]] bool same_place(const Pose2& a, const Pose2& b, double scale = 1.0) const noexcept;
   [[nodiscard]] bool near_prediction(const Pose2& a, const Pose2& ref) const noexcept;

@@ -238,8 +238,11 @@ bool HypothesisTracker::may_switch(const Competitor& c, const Scored& ref, doubl
   const std::size_t crossing = blocked_beams(c.pose), margin = blocked_margin();
   if (crossing > blocked + margin) return false;
   // A place the global search proposed (as likely a priori as the one the filter settled
-  // on) needs only to stay ahead over rival_view metres of new view.
-  if (c.origin == Competitor::Origin::kGlobal) return c.view >= cfg_.rival_view && c.age >= 1;
+  // on) needs only to stay ahead over rival_view metres of new view, and to explain the
+  // scan as the map usually does here: where neither fits as usual, the prediction is
+  // more likely off by a glitch than in the wrong place.
+  if (c.origin == Competitor::Origin::kGlobal)
+    return c.view >= cfg_.rival_view && c.age >= 1 && c.fit >= usual_fit();
   const double moved = std::hypot(c.pose.x - ref.pose.x, c.pose.y - ref.pose.y);
   const bool nearby =
       moved <=

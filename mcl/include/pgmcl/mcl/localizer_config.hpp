@@ -164,7 +164,8 @@ struct HypothesesConfig {
   double drop_evidence = -15.0;              ///< tempered nats below which a competitor is dropped
   double switch_seed_fraction = 0.5;         ///< of the particles redrawn around a winner
   /// New view (metres travelled + metres per radian turned) over which a place the global
-  /// search proposed must stay ahead before the filter moves there.
+  /// search proposed must stay ahead before the filter moves there, on a scan that place
+  /// explains as the map usually does.
   double rival_view = 2.0;
   /// Search around the prediction when its fit (beams that fit the map) falls below this
   /// fraction of its running mean.

@@ -1,14 +1,13 @@
 // A global start on a real log whose odometry glitches, drifts and comes a scan per 1.2 m
 // or 35 deg (data/README.md: aces, the robustness suite's heldout case of seed 20, 0-200 s).
-// The estimate is within 1 m from 3 s on. At 92 s a place the global search had proposed, 12.4 m
-// away and turned 88 deg, has gained 12.9 nats over the prediction over 8.5 m of view. But
-// neither explains the scan as the map usually does there: 0.925 and 0.90 of the probe
-// beams fit, against a usual 0.97. A place from the global search wins only where it does
-// (HypothesisTracker::may_switch). Before that rule the set moved there under all three
-// filter seeds below and stayed 12-16 m off until the end of the excerpt.
+// The estimate is within 1 m from 3 s on. At 92 s a place the global search had proposed,
+// 12.4 m away and turned 88 deg, has gained 12.9 nats over the prediction over 8.5 m of
+// view. But neither explains the scan as the map usually does there: 0.925 and 0.90 of the
+// probe beams fit, against a usual 0.97. A place from the global search wins only where it
+// does (HypothesisTracker::may_switch). Before that rule the set moved there under all
+// three filter seeds below and stayed 12-16 m off until the end of the excerpt.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <cstdio>
 
 #include "pgmcl/io/carmen.hpp"

@@ -93,11 +93,11 @@ void HypothesisTracker::track(const Pose2& prediction, const Pose2& delta, std::
   if (lost_updates_ == 1) abrupt_loss_ = fell || crossed;
   last_fit_ = fit;
   if (lost) {
-    rescue(ref, lost_updates_, abrupt_loss_, out);
+    rescue(ref, lost_updates_, abrupt_loss_, step, out);
   } else {
     // A drop short of lost, a fall at once or readings through walls still get a search
     // but do not stop the means.
-    if (dropped || fell || crossed) rescue(ref, 1, fell || crossed, out);
+    if (dropped || fell || crossed) rescue(ref, 1, fell || crossed, step, out);
     blocked_mean_ =
         have_fit_mean_
             ? blocked_mean_ + kFitMeanRate * (static_cast<double>(blocked) - blocked_mean_)
@@ -117,7 +117,8 @@ void HypothesisTracker::track(const Pose2& prediction, const Pose2& delta, std::
     if (c.age >= 1) out.alternative_evidence = std::max(out.alternative_evidence, c.evidence);
 }
 
-void HypothesisTracker::rescue(const Scored& ref, int widen, bool abrupt, HypothesisStep& out) {
+void HypothesisTracker::rescue(const Scored& ref, int widen, bool abrupt, double step,
+                               HypothesisStep& out) {
   // Around the prediction, over a wider range of headings each update it stays lost (the
   // odometry may keep turning a robot that stands still: Table 5.6's rot1 on jitter).
   PoseSearchQuery q;
@@ -136,6 +137,18 @@ void HypothesisTracker::rescue(const Scored& ref, int widen, bool abrupt, Hypoth
   out.searched = true;
   refined_.clear();
   for (const PoseCandidate& c : search_.search(q).candidates) refined_.push_back(refine(c));
+  // A heading glitch moves the pose by little, at most the step turned through the window.
+  // Amid people, the coarse bound ranks far poses their readings happen to fit above the
+  // turned one, so that reach is searched again on the fine leaves.
+  if (cfg_.glitch_search) {
+    PoseSearchQuery near = q;
+    const double reach = std::sin(std::min(q.half_theta, 0.5 * std::numbers::pi)) * step;
+    near.half_xy = std::min(cfg_.rescue_xy, std::max(2.0 * search_.leaf_size(), reach));
+    near.max_candidates = 1;
+    near.coarse_levels = 0;
+    for (const PoseCandidate& c : search_.search(near).candidates)
+      refined_.push_back(climb({c.x, c.y, c.theta}));
+  }
   // Best first; a stable insertion sort of a handful (ties keep the coarse order).
   for (std::size_t i = 1; i < refined_.size(); ++i)
     for (std::size_t j = i; j > 0 && refined_[j].score.sum_q < refined_[j - 1].score.sum_q; --j)

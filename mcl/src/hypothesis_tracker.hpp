@@ -133,8 +133,9 @@ class HypothesisTracker {
   void track(const Pose2& prediction, const Pose2& delta, std::size_t particles,
              HypothesisStep& out);
   /// Searches around the prediction, over `widen` times the rescue heading window; the
-  /// candidates are glitch candidates when `abrupt` (the fit fell at once).
-  void rescue(const Scored& ref, int widen, bool abrupt, HypothesisStep& out);
+  /// candidates are glitch candidates when `abrupt` (the fit fell at once). `step`: the
+  /// odometry's translation this update (metres).
+  void rescue(const Scored& ref, int widen, bool abrupt, double step, HypothesisStep& out);
   /// The rescue search's heading half-width on the `widen`-th update it runs in a row.
   [[nodiscard]] double rescue_half_theta(int widen) const noexcept;
   /// `pose` lies within this update's rescue window around `ref`.

@@ -2,11 +2,10 @@
 // seed 1, 70-130 s), on a map built from the whole log that shows what stood there on most
 // passes. After the slip at 100.2 s the true pose explains the scans far better than the
 // prediction, but its readings cross more non-free cells: the free space speaks for the
-// prediction. HypothesesConfig::sustained_lead lets the scans' verdict win after three scans.
+// prediction. HypothesesConfig::sustained_lead lets the scans' verdict win after three scans
+// (measured with glitch_search off, which on some seeds finds the true pose by itself).
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <cmath>
 #include <cstdio>
 
 #include "pgmcl/io/carmen.hpp"
@@ -28,26 +27,25 @@ const test::Case& fr079_slip() {
 }
 
 // The longest run of updates more than 1 m off the truth.
-std::size_t longest_lost_run(bool sustained_lead, std::uint64_t seed) {
+std::size_t longest_lost_run(bool sustained_lead, bool glitch_search, std::uint64_t seed) {
   ReplayJob job = test::job_from_truth(fr079_slip(), "fr079 slip excerpt");
   job.config.seed = seed;
   job.config.hypotheses.sustained_lead = sustained_lead;
-  const ReplayResult r = run(job);
-  std::size_t run = 0, longest = 0;
-  for (const io::StampedPose& p : r.trajectory) {
-    const std::optional<Pose2> t = io::interpolate_at(fr079_slip().truth, p.stamp);
-    const bool lost = t && std::hypot(p.pose.x - t->x, p.pose.y - t->y) > 1.0;
-    run = lost ? run + 1 : 0;
-    longest = std::max(longest, run);
-  }
-  return longest;
+  job.config.hypotheses.glitch_search = glitch_search;
+  return test::longest_run_off(fr079_slip(), run(job), 1.0);
 }
 
 TEST(RealSlip, TwoMetreSlipPastAnOutdatedMapIsAbsorbedWithinTenUpdates) {
   for (const std::uint64_t seed : {1, 2, 3}) {
-    const std::size_t on = longest_lost_run(true, seed), off = longest_lost_run(false, seed);
-    std::printf("  seed %llu: more than 1 m off for %zu updates in a row (without: %zu)\n",
-                static_cast<unsigned long long>(seed), on, off);
+    // The rule alone: glitch_search sometimes finds the slip's true pose first (seed 3).
+    const std::size_t with_defaults = longest_lost_run(true, true, seed);
+    const std::size_t on = longest_lost_run(true, false, seed);
+    const std::size_t off = longest_lost_run(false, false, seed);
+    std::printf(
+        "  seed %llu: more than 1 m off for %zu updates in a row (the rule alone: %zu, "
+        "neither: %zu)\n",
+        static_cast<unsigned long long>(seed), with_defaults, on, off);
+    EXPECT_LE(with_defaults, 10u);
     EXPECT_LE(on, 10u);
     // Seen without: 16 updates on five seeds, as in the full run of the suite.
     EXPECT_GT(off, 10u) << "the excerpt no longer exercises sustained_lead";

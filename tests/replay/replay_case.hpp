@@ -1,6 +1,10 @@
 #pragma once
 // A logged case for the replay tests: a map, a CARMEN log and its truth, and a job that
 // starts the filter on the truth at the first scan.
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -26,6 +30,18 @@ inline ReplayJob job_from_truth(const Case& c, std::string name) {
   job.truth = c.truth;
   job.init.kind = InitialBelief::Kind::kTruth;
   return job;
+}
+
+// The longest run of `r`'s updates in a row more than `metres` off `c`'s truth.
+inline std::size_t longest_run_off(const Case& c, const ReplayResult& r, double metres) {
+  std::size_t run = 0, longest = 0;
+  for (const io::StampedPose& p : r.trajectory) {
+    const std::optional<Pose2> t = io::interpolate_at(c.truth, p.stamp);
+    const bool off = t && std::hypot(p.pose.x - t->x, p.pose.y - t->y) > metres;
+    run = off ? run + 1 : 0;
+    longest = std::max(longest, run);
+  }
+  return longest;
 }
 
 }  // namespace pgmcl::replay::test

@@ -306,6 +306,8 @@ void describe_hypotheses(V& v, Config& c) {
              kNonNegative);
     v.integer(Field{"rescue_budget", "lookups", "beam lookups per rescue search"}, h.rescue_budget,
               IntRange{1});
+    v.flag(Field{"glitch_search", "", "that search also fine-searches a heading glitch's reach"},
+           h.glitch_search);
     v.number(Field{"sweep_share", "", "map sweep lookups per update / the particles' own"},
              h.sweep_share, kNonNegative);
     v.number(Field{"separation_xy", "m", "closer hypotheses are the same place"}, h.separation_xy,

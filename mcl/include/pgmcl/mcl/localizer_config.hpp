@@ -173,6 +173,10 @@ struct HypothesesConfig {
   double rescue_xy = 2.5;                   ///< metres, half-width of that search
   double rescue_theta = 0.7;                ///< radians (40 deg), half-width of that search
   std::uint64_t rescue_budget = 2'000'000;  ///< beam lookups per rescue search
+  /// The rescue search also searches, on its finest leaves, the positions a heading glitch
+  /// can reach (the step turned through the heading window): amid people, its coarse bound
+  /// ranks far poses their readings happen to fit above the turned one.
+  bool glitch_search = true;
   /// Map sweep while tracking, a root block at a time: lookups per update, as a share of
   /// the particles' own (particles x beams). 0 turns the sweep off.
   double sweep_share = 0.15;

@@ -10,10 +10,7 @@
 
 #include <cstdio>
 
-#include "pgmcl/io/carmen.hpp"
 #include "pgmcl/io/trajectory.hpp"
-#include "pgmcl/io/tum.hpp"
-#include "pgmcl/map_io/map_io.hpp"
 #include "pgmcl/replay/replay.hpp"
 #include "replay_case.hpp"
 
@@ -21,10 +18,9 @@ namespace pgmcl::replay {
 namespace {
 
 const test::Case& aces_heldout() {
-  static const test::Case e{
-      maps::load_map(PGMCL_SOURCE_DIR "/data/maps/aces/aces-0.05.yaml"),
-      io::read_carmen(PGMCL_SOURCE_DIR "/data/logs/aces-heldout-s20-0-200s.log.gz"),
-      io::read_tum(PGMCL_SOURCE_DIR "/data/logs/aces-heldout-s20-0-200s.tum.gz")};
+  static const test::Case e =
+      test::load_case(PGMCL_SOURCE_DIR "/data/maps/aces/aces-0.05.yaml",
+                      PGMCL_SOURCE_DIR "/data/logs/aces-heldout-s20-0-200s");
   return e;
 }
 

@@ -10,10 +10,6 @@
 
 #include <cstdio>
 
-#include "pgmcl/io/carmen.hpp"
-#include "pgmcl/io/trajectory.hpp"
-#include "pgmcl/io/tum.hpp"
-#include "pgmcl/map_io/map_io.hpp"
 #include "pgmcl/replay/replay.hpp"
 #include "replay_case.hpp"
 
@@ -21,10 +17,9 @@ namespace pgmcl::replay {
 namespace {
 
 const test::Case& fr079_glitch() {
-  static const test::Case e{
-      maps::load_map(PGMCL_SOURCE_DIR "/data/maps/fr079/fr079-0.05.yaml"),
-      io::read_carmen(PGMCL_SOURCE_DIR "/data/logs/fr079-glitch-s19-230-275s.log.gz"),
-      io::read_tum(PGMCL_SOURCE_DIR "/data/logs/fr079-glitch-s19-230-275s.tum.gz")};
+  static const test::Case e =
+      test::load_case(PGMCL_SOURCE_DIR "/data/maps/fr079/fr079-0.05.yaml",
+                      PGMCL_SOURCE_DIR "/data/logs/fr079-glitch-s19-230-275s");
   return e;
 }
 

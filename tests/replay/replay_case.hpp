@@ -10,6 +10,8 @@
 
 #include "pgmcl/io/carmen.hpp"
 #include "pgmcl/io/trajectory.hpp"
+#include "pgmcl/io/tum.hpp"
+#include "pgmcl/map_io/map_io.hpp"
 #include "pgmcl/maps/occupancy_grid.hpp"
 #include "pgmcl/replay/replay.hpp"
 
@@ -20,6 +22,11 @@ struct Case {
   io::CarmenLog log;
   io::Trajectory truth;
 };
+
+// The bundled map at `map` and the log `stem`.log.gz with its truth `stem`.tum.gz.
+inline Case load_case(const std::string& map, const std::string& stem) {
+  return {maps::load_map(map), io::read_carmen(stem + ".log.gz"), io::read_tum(stem + ".tum.gz")};
+}
 
 // `c` must outlive the job (it points to the map and the log).
 inline ReplayJob job_from_truth(const Case& c, std::string name) {

@@ -109,6 +109,17 @@ def compose(a, b):
     return (a[0] + c * b[0] - s * b[1], a[1] + s * b[0] + c * b[1], wrap(a[2] + b[2]))
 
 
+def connected_topics(master, publisher, subscriber):
+    """Topics on which `publisher` has a live connection to `subscriber` (its bus info)."""
+    import xmlrpc.client
+    try:
+        uri = master.lookupNode(publisher)
+        _, _, bus = xmlrpc.client.ServerProxy(uri).getBusInfo("/pgmcl_e2e")
+    except Exception:
+        return set()  # not registered yet
+    return {c[4] for c in bus if c[1] == subscriber and c[2] == "o" and c[5]}
+
+
 def wait_for(pred, timeout, step=0.02):
     deadline = time.monotonic() + timeout
     while time.monotonic() < deadline:
@@ -231,7 +242,7 @@ def run_all(args, work, env, procs, check):
     from geometry_msgs.msg import PoseArray, PoseWithCovarianceStamped
     from rosgraph_msgs.msg import Clock
     from sensor_msgs.msg import LaserScan
-    from std_srvs.srv import Empty
+    from std_srvs.srv import Empty, SetBool
     from tf2_msgs.msg import TFMessage
     from geometry_msgs.msg import TransformStamped
     rospy.init_node("pgmcl_e2e", anonymous=True, disable_signals=True)
@@ -271,8 +282,17 @@ def run_all(args, work, env, procs, check):
 
     # ---- Phase 1: the bag with --clock.
     log(f"playing {len(scans)} scans at {args.rate}x")
-    play = procs.start("rosbag_play", ["rosbag", "play", "--clock", "-q", "-r", str(args.rate),
-                                       f"{work}/raw.bag"], env)
+    # Paused until pgmcl_node is connected to /scan and /tf: a bag that starts before the
+    # connections are up (a loaded machine) loses its first scans, and the initial pose given
+    # for the first scan is then applied several in-place turn steps later.
+    play = procs.start("rosbag_play", ["rosbag", "play", "--clock", "-q", "--pause",
+                                       "-r", str(args.rate), f"{work}/raw.bag",
+                                       "__name:=pgmcl_e2e_play"], env)
+    if not wait_for(lambda: play.poll() is not None or
+                    {"/scan", "/tf"} <= connected_topics(master, "/pgmcl_e2e_play", "/pgmcl_node"),
+                    30, 0.05):
+        raise RuntimeError("pgmcl_node did not connect to the bag's /scan and /tf")
+    rospy.ServiceProxy("/pgmcl_e2e_play/pause_playback", SetBool)(False)
     duration = (scans[-1].header.stamp.to_sec() - t0) / args.rate
     try:
         play.wait(timeout=duration + 60)
@@ -285,6 +305,9 @@ def run_all(args, work, env, procs, check):
         c1 = sorted(corrections)
     check(node.poll() is None, "pgmcl_node is running after the bag")
     check(len(p1) > 0.8 * len(scans), f"{len(p1)} amcl_pose messages for {len(scans)} scans")
+    first = sorted(p[0] for p in p1)[:1]
+    check(first and first[0] <= scans[1].header.stamp.to_nsec(),
+          "the first amcl_pose answers one of the bag's first two scans (initial pose applies)")
     st = np.array([p[0] for p in p1]) * 1e-9
     ex = np.interp(st, truth_t, truth_x) - np.array([p[1] for p in p1])
     ey = np.interp(st, truth_t, truth_y) - np.array([p[2] for p in p1])

@@ -21,13 +21,21 @@ constexpr double kBearingTranslation = 0.05;  // metres
   return variance > 0.0 ? std::sqrt(variance) : 0.0;
 }
 
+/// The rotations the noise scales with (kBearingTranslation): Table 5.6's own for t >= 5 cm.
+struct NoiseRotations {
+  double r1, r2;
+};
+[[nodiscard]] NoiseRotations noise_rotations(const OdometryIncrement& inc) noexcept {
+  const double r1 =
+      inc.trans < kBearingTranslation ? inc.rot1 * (inc.trans / kBearingTranslation) : inc.rot1;
+  return {r1, inc.rot2 + (inc.rot1 - r1)};
+}
+
 /// Probabilistic Robotics, Table 5.6, lines 5-10.
 [[nodiscard]] Pose2 sample_diff_drive(const MotionNoise& n, const OdometryIncrement& inc,
                                       const Pose2& pose, Rng& rng) noexcept {
   const double r1 = inc.rot1, t = inc.trans, r2 = inc.rot2;
-  // Rotations the noise scales with (kBearingTranslation): Table 5.6's own for t >= 5 cm.
-  const double r1_n = t < kBearingTranslation ? r1 * (t / kBearingTranslation) : r1;
-  const double r2_n = r2 + (r1 - r1_n);
+  const auto [r1_n, r2_n] = noise_rotations(inc);
   const double r1_sq = r1_n * r1_n, t_sq = t * t, r2_sq = r2_n * r2_n;
   // Fixed draw order (rot1, trans, rot2) keeps a seed's stream reproducible.
   const double r1_hat = r1 + rng.normal(sigma_of(n.a1 * r1_sq + n.a2 * t_sq));
@@ -56,6 +64,15 @@ constexpr double kBearingTranslation = 0.05;  // metres
 }
 
 }  // namespace
+
+double rotation_moment(MotionModelKind kind, const OdometryIncrement& inc) noexcept {
+  if (kind == MotionModelKind::kOmnidirectional) {
+    const double rot = wrap_angle(inc.rot1 + inc.rot2);
+    return rot * rot;
+  }
+  const auto [r1, r2] = noise_rotations(inc);
+  return r1 * r1 + r2 * r2;
+}
 
 OdometryIncrement decompose_odometry(const Pose2& odom_prev, const Pose2& odom_now) noexcept {
   // Working in the frame of odom_prev makes rot1 = atan2(dy, dx) of the local increment,

@@ -49,6 +49,11 @@ struct OdometryIncrement {
 [[nodiscard]] OdometryIncrement decompose_odometry(const Pose2& odom_prev,
                                                    const Pose2& odom_now) noexcept;
 
+/// What the rotation noise of `inc` grows with: rot1^2 + rot2^2 as the differential-drive
+/// draw scales them (on steps shorter than 5 cm rot1, set by pose jitter, is counted as part
+/// of rot2), or the omnidirectional rotation squared. The variance form's a1 and a4 multiply it.
+[[nodiscard]] double rotation_moment(MotionModelKind kind, const OdometryIncrement& inc) noexcept;
+
 /// Samples a new pose for one particle: Table 5.6 for differential drive, or the
 /// omnidirectional model (independent noise on forward/strafe translation and rotation).
 /// `pose` is in any fixed frame (the filter uses the map-local frame); theta is wrapped.

@@ -79,6 +79,7 @@ UpdateResult Localizer::update(const Pose2& odometry_pose, const LaserScan& scan
 
   if (backwards) {  // kReset: start a fresh odometry chain, keep the particles
     have_odom_ = false;
+    rotation_moment_ = 0.0;
     force_ = true;
     r.skipped = SkipReason::kTimeWentBackwards;
     r.timings.total_ms = ms_since(t0);
@@ -90,6 +91,10 @@ UpdateResult Localizer::update(const Pose2& odometry_pose, const LaserScan& scan
   Pose2 delta{};
   if (have_odom_) {
     delta = odom_ref_.between(odometry_pose);
+    if (cfg_.motion.per_reading_noise)
+      rotation_moment_ +=
+          rotation_moment(cfg_.motion.kind, decompose_odometry(odom_last_, odometry_pose));
+    odom_last_ = odometry_pose;
     const bool moved = std::hypot(delta.x, delta.y) >= cfg_.gating.d_min ||
                        std::abs(delta.theta) >= cfg_.gating.theta_min;
     if (cfg_.gating.enabled && !moved && !force_) {
@@ -105,7 +110,7 @@ UpdateResult Localizer::update(const Pose2& odometry_pose, const LaserScan& scan
     r.timings.motion_ms = ms_since(tm);
   }
   have_odom_ = true;
-  odom_ref_ = odometry_pose;
+  odom_ref_ = odom_last_ = odometry_pose;
 
   // ---- Measurement (Dekan et al., Eq. (6), tempered) ----
   const auto tz = Clock::now();
@@ -135,7 +140,9 @@ UpdateResult Localizer::update(const Pose2& odometry_pose, const LaserScan& scan
   // its odometry "miss", and a wider proposal would only spread it further.
   const bool adaptable = measured && r.converged && !r.switched && r.alternative_evidence <= 0.0;
   if (adaptable && adaptable_ && r.motion_applied)
-    motion_noise_->observe(delta, anchor_, last_.covariance, r.estimate, r.covariance);
+    motion_noise_->observe(delta, rotation_moment_, anchor_, last_.covariance, r.estimate,
+                           r.covariance);
+  rotation_moment_ = 0.0;  // the next update's readings start here
   adaptable_ = adaptable;
   r.rotation_noise_factor = motion_noise_->rotation_factor();
   r.translation_noise_factor = motion_noise_->translation_factor();
@@ -173,13 +180,14 @@ void Localizer::confirm_by_fit(UpdateResult& r) noexcept {
 
 void Localizer::motion_update(const Pose2& odom_prev, const Pose2& odom_now) {
   const OdometryIncrement inc = decompose_odometry(odom_prev, odom_now);
+  const MotionModelKind kind = cfg_.motion.kind;
   const std::uint64_t step = next_step();
   const std::size_t n = p_.size();
   float* x = p_.x.data();
   float* y = p_.y.data();
   float* th = p_.theta.data();
-  const MotionModelKind kind = cfg_.motion.kind;
-  const MotionNoise noise = motion_noise_->noise();
+  const MotionNoise noise =
+      detail::spanning_readings(kind, motion_noise_->noise(), inc, rotation_moment_);
   const std::uint64_t seed = cfg_.seed;
   detail::for_each_block(detail::block_count(n), threads_, [&](std::size_t b) {
     Rng rng = Rng::for_block(seed, step, b);
@@ -210,7 +218,7 @@ bool Localizer::measurement_update(const LaserScan& scan, const Pose2& delta, Up
     // Competing hypotheses may redraw some particles before the scan scores them all.
     // The rescue search covers at least the heading error the motion noise allows (3 sigma):
     // a long turn between sparse scans on noisy odometry can exceed its fixed window.
-    const double heading_spread = 3.0 * motion_noise_->heading_sigma(delta);
+    const double heading_spread = 3.0 * motion_noise_->heading_sigma(delta, rotation_moment_);
     detail::HypothesisStep h;
     const auto follow_hypotheses = [&] {
       const auto th = Clock::now();

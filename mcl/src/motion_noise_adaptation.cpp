@@ -23,6 +23,27 @@ double translation_variance(const MotionNoise& a, const OdometryIncrement& inc) 
 
 }  // namespace
 
+MotionNoise spanning_readings(MotionModelKind kind, const MotionNoise& noise,
+                              const OdometryIncrement& inc, double moment) noexcept {
+  const double own = rotation_moment(kind, inc);
+  const double extra = moment - own;
+  MotionNoise n = noise;
+  if (!(extra > 0.0)) return n;
+  const double t2 = inc.trans * inc.trans;
+  if (t2 > 0.0) {
+    // Carried by the translation terms, which every draw of this increment scales by t2:
+    // rot1 and rot2 (Table 5.6) each draw a2 t2, the omnidirectional rotation once.
+    const double draws = kind == MotionModelKind::kOmnidirectional ? 1.0 : 2.0;
+    n.a2 += noise.a1 * extra / (draws * t2);
+    n.a3 += noise.a4 * extra / t2;
+    n.a5 += noise.a4 * extra / t2;
+  } else if (own > 0.0) {  // a turn in place
+    n.a1 *= moment / own;
+    n.a4 *= moment / own;
+  }
+  return n;
+}
+
 MotionNoiseAdaptation::MotionNoiseAdaptation(const MotionConfig& motion) : cfg_(motion) {
   const std::size_t w = cfg_.adaptation.window;
   rotation_.ratios.assign(w, 0.0);
@@ -50,12 +71,12 @@ double MotionNoiseAdaptation::Window::factor(std::vector<double>& scratch, doubl
   return std::clamp(margin * median / kChiSquare1Median, 1.0, max_factor);
 }
 
-void MotionNoiseAdaptation::observe(const Pose2& odom_delta, const Pose2& est_prev,
+void MotionNoiseAdaptation::observe(const Pose2& odom_delta, double moment, const Pose2& est_prev,
                                     const Eigen::Matrix3d& cov_prev, const Pose2& est_now,
                                     const Eigen::Matrix3d& cov_now) {
   if (!cfg_.adaptation.enabled) return;
-  const MotionNoise& a = cfg_.noise;
   const OdometryIncrement inc = decompose_odometry(Pose2{}, odom_delta);
+  const MotionNoise a = spanning_readings(cfg_.kind, cfg_.noise, inc, moment);
   const Pose2 moved = est_prev.between(est_now);   // what the filter found, robot frame
   const Eigen::Matrix3d cov = cov_prev + cov_now;  // the two estimates' own uncertainty
 
@@ -77,8 +98,9 @@ void MotionNoiseAdaptation::observe(const Pose2& odom_delta, const Pose2& est_pr
   translation_factor_ = translation_.factor(scratch_, ac.margin, ac.max_inflation);
 }
 
-double MotionNoiseAdaptation::heading_sigma(const Pose2& odom_delta) const noexcept {
-  return std::sqrt(heading_variance(noise(), decompose_odometry(Pose2{}, odom_delta)));
+double MotionNoiseAdaptation::heading_sigma(const Pose2& odom_delta, double moment) const noexcept {
+  const OdometryIncrement inc = decompose_odometry(Pose2{}, odom_delta);
+  return std::sqrt(heading_variance(spanning_readings(cfg_.kind, noise(), inc, moment), inc));
 }
 
 MotionNoise MotionNoiseAdaptation::noise() const noexcept {

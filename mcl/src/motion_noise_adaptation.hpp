@@ -12,21 +12,30 @@
 
 namespace pgmcl::detail {
 
+/// `noise` for the composite increment `inc` of several odometry readings whose own
+/// increments' rotation_moment()s sum to `moment`: widened so that the heading variance (and
+/// the translation variance's rotation term) is the readings' sum. A moment no larger than
+/// the composite's own returns `noise` unchanged.
+[[nodiscard]] MotionNoise spanning_readings(MotionModelKind kind, const MotionNoise& noise,
+                                            const OdometryIncrement& inc, double moment) noexcept;
+
 class MotionNoiseAdaptation {
  public:
   explicit MotionNoiseAdaptation(const MotionConfig& motion);
 
   /// One step between two converged estimates (global frame, with their covariances) over
-  /// which the odometry moved by `odom_delta` (robot frame).
-  void observe(const Pose2& odom_delta, const Pose2& est_prev, const Eigen::Matrix3d& cov_prev,
-               const Pose2& est_now, const Eigen::Matrix3d& cov_now);
+  /// which the odometry moved by `odom_delta` (robot frame), over readings whose rotation
+  /// moments sum to `moment` (spanning_readings()).
+  void observe(const Pose2& odom_delta, double moment, const Pose2& est_prev,
+               const Eigen::Matrix3d& cov_prev, const Pose2& est_now,
+               const Eigen::Matrix3d& cov_now);
 
   /// The configured noise with its rotation terms (a1, a2) and translation terms (a3, a4,
   /// a5) multiplied by the current factors.
   [[nodiscard]] MotionNoise noise() const noexcept;
-  /// Standard deviation of the odometry's heading error over `odom_delta` (robot frame)
-  /// under noise(), radians.
-  [[nodiscard]] double heading_sigma(const Pose2& odom_delta) const noexcept;
+  /// Standard deviation of the odometry's heading error over `odom_delta` (robot frame),
+  /// readings of rotation moment `moment`, under noise(), radians.
+  [[nodiscard]] double heading_sigma(const Pose2& odom_delta, double moment) const noexcept;
   [[nodiscard]] double rotation_factor() const noexcept { return rotation_factor_; }
   [[nodiscard]] double translation_factor() const noexcept { return translation_factor_; }
 

@@ -125,6 +125,9 @@ void describe_motion(V& v, Config& c) {
       v.number(Field{"a5", "m²/m²", "omnidirectional only: strafe noise from translation"}, n.a5,
                alpha);
     });
+    v.flag(Field{"per_reading_noise", "",
+                 "heading noise summed over the odometry readings the gating skipped"},
+           c.motion.per_reading_noise);
     v.section("adaptation", [&] {
       auto& a = c.motion.adaptation;
       v.flag(Field{"enabled", "", "inflate the noise while the odometry misses the estimates"},

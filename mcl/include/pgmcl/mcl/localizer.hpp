@@ -174,8 +174,12 @@ class Localizer {
 
   // Filter state.
   bool have_odom_ = false;
-  Pose2 odom_ref_{};  ///< odometry at the last filter update
-  Pose2 anchor_{};    ///< global estimate at odom_ref_ (for dead reckoning)
+  Pose2 odom_ref_{};   ///< odometry at the last filter update
+  Pose2 odom_last_{};  ///< odometry at the last update() call, skipped or not
+  /// Rotation moments of the odometry readings' increments since odom_ref_
+  /// (MotionConfig::per_reading_noise).
+  double rotation_moment_ = 0.0;
+  Pose2 anchor_{};  ///< global estimate at odom_ref_ (for dead reckoning)
   bool have_stamp_ = false;
   double last_stamp_ = 0.0;
   bool force_ = true;

@@ -40,6 +40,10 @@ struct MotionAdaptationConfig {
 struct MotionConfig {
   MotionModelKind kind = MotionModelKind::kDifferentialDrive;
   MotionNoise noise{};  ///< Probabilistic Robotics Table 5.6, variance form (motion_model.hpp)
+  /// The heading noise of an update is that of every odometry reading since the last one,
+  /// not of their composite: readings the gating skipped (in-place turns, short reversals)
+  /// each carry their own rot1 and rot2 noise, which a composite nearly straight step hides.
+  bool per_reading_noise = true;
   MotionAdaptationConfig adaptation{};
 };
 

@@ -292,6 +292,7 @@ def run_all(args, work, env, procs, check):
                     {"/scan", "/tf"} <= connected_topics(master, "/pgmcl_e2e_play", "/pgmcl_node"),
                     30, 0.05):
         raise RuntimeError("pgmcl_node did not connect to the bag's /scan and /tf")
+    rospy.wait_for_service("/pgmcl_e2e_play/pause_playback", timeout=10)
     rospy.ServiceProxy("/pgmcl_e2e_play/pause_playback", SetBool)(False)
     duration = (scans[-1].header.stamp.to_sec() - t0) / args.rate
     try:

@@ -180,12 +180,12 @@ void Localizer::confirm_by_fit(UpdateResult& r) noexcept {
 
 void Localizer::motion_update(const Pose2& odom_prev, const Pose2& odom_now) {
   const OdometryIncrement inc = decompose_odometry(odom_prev, odom_now);
-  const MotionModelKind kind = cfg_.motion.kind;
   const std::uint64_t step = next_step();
   const std::size_t n = p_.size();
   float* x = p_.x.data();
   float* y = p_.y.data();
   float* th = p_.theta.data();
+  const MotionModelKind kind = cfg_.motion.kind;
   const MotionNoise noise =
       detail::spanning_readings(kind, motion_noise_->noise(), inc, rotation_moment_);
   const std::uint64_t seed = cfg_.seed;

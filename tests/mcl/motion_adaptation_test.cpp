@@ -15,6 +15,7 @@
 #include "motion_noise_adaptation.hpp"
 #include "pgmcl/common/random.hpp"
 #include "pgmcl/mcl/localizer.hpp"
+#include "pgmcl/mcl/pose_estimate.hpp"
 #include "synthetic_world.hpp"
 
 namespace pgmcl {
@@ -213,18 +214,8 @@ double heading_spread_after(const std::vector<Pose2>& readings, bool per_reading
         << "reading " << k;
   }
   const ParticlesView p = loc.particles();
-  double s = 0.0, c = 0.0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    s += std::sin(p.theta[i]);
-    c += std::cos(p.theta[i]);
-  }
-  const double mean = std::atan2(s, c);
-  double var = 0.0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const double d = wrap_angle(static_cast<double>(p.theta[i]) - mean);
-    var += d * d;
-  }
-  return std::sqrt(var / static_cast<double>(p.size()));
+  const std::vector<double> equal(p.size(), 1.0);
+  return std::sqrt(estimate_pose(p.x, p.y, p.theta, equal, 1).covariance(2, 2));
 }
 
 TEST(SpanningReadings, TheParticlesDrawTheNoiseOfEveryReadingSinceTheLastUpdate) {
